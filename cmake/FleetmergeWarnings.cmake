@@ -1,0 +1,9 @@
+# One place that sets language level, warnings and sanitizers for every fleetmerge target.
+function(fleetmerge_target_defaults target)
+  target_compile_features(${target} PUBLIC cxx_std_17)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic)
+  if(FLEETMERGE_SANITIZE)
+    target_compile_options(${target} PRIVATE -fsanitize=address,undefined -fno-omit-frame-pointer)
+    target_link_options(${target} PUBLIC -fsanitize=address,undefined)
+  endif()
+endfunction()

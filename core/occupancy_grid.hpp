@@ -1,0 +1,52 @@
+// A three-state occupancy grid (Section III: traversable, occupied, unknown) on a GridGeometry.
+// Cells are stored in a CV_8UC1 matrix whose row j is grid row j counted from the bottom (the
+// map frame's +y), so cells()(j, i) is cell (i, j): no image-row flip inside core/.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "core/grid_geometry.hpp"
+
+namespace fleetmerge {
+
+enum class CellState : std::uint8_t { kUnknown = 0, kFree = 1, kOccupied = 2 };
+
+class OccupancyGrid {
+ public:
+  OccupancyGrid() = default;
+  explicit OccupancyGrid(const GridGeometry& geometry, CellState fill = CellState::kUnknown);
+  // Takes a CV_8UC1 matrix of CellState values (rows from the bottom); throws if the type, size
+  // or a value is wrong.
+  OccupancyGrid(const GridGeometry& geometry, cv::Mat1b cells);
+
+  const GridGeometry& geometry() const { return geometry_; }
+  int width() const { return geometry_.width(); }
+  int height() const { return geometry_.height(); }
+
+  CellState at(const Eigen::Array2i& cell) const {
+    return static_cast<CellState>(cells_(cell.y(), cell.x()));
+  }
+  // State of a cell, kUnknown outside the grid.
+  CellState StateOrUnknown(const Eigen::Array2i& cell) const {
+    return geometry_.Contains(cell) ? at(cell) : CellState::kUnknown;
+  }
+  void set(const Eigen::Array2i& cell, CellState state) {
+    cells_(cell.y(), cell.x()) = static_cast<std::uint8_t>(state);
+  }
+
+  const cv::Mat1b& cells() const { return cells_; }
+  cv::Mat1b& mutable_cells() { return cells_; }
+
+  std::vector<Eigen::Array2i> CellsIn(CellState state) const;
+  int Count(CellState state) const;
+
+ private:
+  GridGeometry geometry_;
+  cv::Mat1b cells_;
+};
+
+}  // namespace fleetmerge

@@ -1,0 +1,38 @@
+#include "core/pose2.hpp"
+
+#include <cmath>
+
+#include <Eigen/Geometry>
+
+namespace fleetmerge {
+
+double WrapAngle(double angle_rad) {
+  double wrapped = std::remainder(angle_rad, 2.0 * M_PI);  // in [-pi, pi]
+  if (wrapped <= -M_PI) wrapped += 2.0 * M_PI;
+  return wrapped;
+}
+
+Pose2::Pose2(double x_m, double y_m, double yaw_rad)
+    : translation_m_(x_m, y_m), yaw_rad_(WrapAngle(yaw_rad)) {}
+
+Pose2::Pose2(const Eigen::Vector2d& translation_m, double yaw_rad)
+    : translation_m_(translation_m), yaw_rad_(WrapAngle(yaw_rad)) {}
+
+Eigen::Matrix2d Pose2::rotation() const {
+  return Eigen::Rotation2Dd(yaw_rad_).toRotationMatrix();
+}
+
+Pose2 Pose2::inverse() const {
+  const Eigen::Matrix2d R_inv = rotation().transpose();
+  return Pose2(-(R_inv * translation_m_), -yaw_rad_);
+}
+
+Pose2 Pose2::operator*(const Pose2& T_b_c) const {
+  return Pose2(translation_m_ + rotation() * T_b_c.translation_m_, yaw_rad_ + T_b_c.yaw_rad_);
+}
+
+Eigen::Vector2d Pose2::operator*(const Eigen::Vector2d& p_b) const {
+  return translation_m_ + rotation() * p_b;
+}
+
+}  // namespace fleetmerge
