@@ -1,0 +1,35 @@
+// The acceptance index omega (Eq. 1) of two maps under a candidate transformation.
+//
+//   agr = #cells where both maps are free or both occupied
+//   dis = #cells where one map is free and the other occupied
+//   omega = agr / (agr + dis)  if agr != 0, else 0                          (Eq. 1)
+// Unknown cells count for neither. omega(M, M) = 1.
+//
+// Instead of materialising T M_b (a rotated copy of the whole map) we walk b's known cells and
+// look each one up in a: a rigid map of a regular grid is affine, so the position in a advances
+// by a constant step along each row of b and costs two additions per cell.
+#pragma once
+
+#include <cstdint>
+
+#include "core/occupancy_grid.hpp"
+#include "core/pose2.hpp"
+
+namespace fleetmerge {
+
+struct Agreement {
+  std::int64_t agree = 0;
+  std::int64_t disagree = 0;
+  double omega() const {
+    return agree == 0 ? 0.0 : double(agree) / double(agree + disagree);  // Eq. (1)
+  }
+};
+
+// Counts agreement of `a` with `b` placed by T_ga_gb, the pose of b's grid frame in a's grid
+// frame in CELL units (both grids must share one resolution). Each b cell is compared with the
+// a cell containing its centre. `stride` > 1 visits every stride-th row and column of b (a
+// cheap estimate for ranking many candidates).
+Agreement CountAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb,
+                         int stride = 1);
+
+}  // namespace fleetmerge

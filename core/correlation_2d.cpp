@@ -1,0 +1,66 @@
+#include "core/correlation_2d.hpp"
+
+#include "core/error.hpp"
+
+namespace fleetmerge {
+
+FixedImageCorrelator::FixedImageCorrelator(const cv::Mat1f& a, cv::Size max_b_size)
+    : a_size_(a.size()), max_b_size_(max_b_size) {
+  // Padding to at least A + B - 1 in each axis turns the FFT's circular correlation into the
+  // linear one; getOptimalDFTSize picks a size with small prime factors for speed.
+  dft_size_ = cv::Size(cv::getOptimalDFTSize(a.cols + max_b_size.width - 1),
+                       cv::getOptimalDFTSize(a.rows + max_b_size.height - 1));
+  cv::Mat1f padded = cv::Mat1f::zeros(dft_size_);
+  a.copyTo(padded(cv::Rect(0, 0, a.cols, a.rows)));
+  cv::dft(padded, a_spectrum_, 0, a.rows);
+}
+
+cv::Mat1f FixedImageCorrelator::Correlate(const cv::Mat1f& b) const {
+  if (b.cols > max_b_size_.width || b.rows > max_b_size_.height) {
+    throw Error("FixedImageCorrelator: image B is larger than the size fixed at construction");
+  }
+  cv::Mat1f padded = cv::Mat1f::zeros(dft_size_);
+  b.copyTo(padded(cv::Rect(0, 0, b.cols, b.rows)));
+  cv::Mat b_spectrum, product;
+  cv::dft(padded, b_spectrum, 0, b.rows);
+  // conj(B) in the product: correlation rather than convolution.
+  cv::mulSpectrums(a_spectrum_, b_spectrum, product, 0, /*conjB=*/true);
+  cv::Mat1f circular;
+  cv::idft(product, circular, cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+
+  // Circular index s holds the shift s (s >= 0) or s - N (negative shifts wrap to the end).
+  const int out_cols = a_size_.width + b.cols - 1;
+  const int out_rows = a_size_.height + b.rows - 1;
+  cv::Mat1f out(out_rows, out_cols);
+  for (int r = 0; r < out_rows; ++r) {
+    const int dy = r - (b.rows - 1);
+    const float* src = circular.ptr<float>((dy + dft_size_.height) % dft_size_.height);
+    float* dst = out.ptr<float>(r);
+    for (int c = 0; c < out_cols; ++c) {
+      const int dx = c - (b.cols - 1);
+      dst[c] = src[(dx + dft_size_.width) % dft_size_.width];
+    }
+  }
+  return out;
+}
+
+cv::Mat1f CrossCorrelateDirect(const cv::Mat1f& a, const cv::Mat1f& b) {
+  cv::Mat1f out = cv::Mat1f::zeros(a.rows + b.rows - 1, a.cols + b.cols - 1);
+  for (int r = 0; r < out.rows; ++r) {
+    for (int c = 0; c < out.cols; ++c) {
+      const int dy = r - (b.rows - 1);
+      const int dx = c - (b.cols - 1);
+      double sum = 0.0;
+      for (int y = 0; y < b.rows; ++y) {
+        for (int x = 0; x < b.cols; ++x) {
+          const int ax = x + dx, ay = y + dy;
+          if (ax >= 0 && ay >= 0 && ax < a.cols && ay < a.rows) sum += a(ay, ax) * b(y, x);
+        }
+      }
+      out(r, c) = static_cast<float>(sum);
+    }
+  }
+  return out;
+}
+
+}  // namespace fleetmerge

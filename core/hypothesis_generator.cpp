@@ -1,0 +1,126 @@
+#include "core/hypothesis_generator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include <Eigen/Geometry>
+
+#include "core/acceptance_index.hpp"
+#include "core/circular_correlation.hpp"
+#include "core/error.hpp"
+
+namespace fleetmerge {
+namespace {
+
+void CheckSameResolution(const OccupancyGrid& a, const OccupancyGrid& b) {
+  const double ra = a.geometry().resolution_m(), rb = b.geometry().resolution_m();
+  if (std::abs(ra - rb) > 1e-9 * std::max(ra, rb)) {
+    std::ostringstream msg;
+    msg << "maps have different resolutions (" << ra << " m and " << rb
+        << " m): resample them to one resolution first";
+    throw Error(msg.str());
+  }
+}
+
+std::vector<double> RotationCandidates(const std::vector<double>& hs_a,
+                                       const std::vector<double>& hs_b, int peaks) {
+  const double bin_rad = M_PI / hs_a.size();
+  std::vector<double> yaws;
+  for (const Peak& peak : CircularLocalMaxima(CircularCrossCorrelation(hs_a, hs_b), peaks)) {
+    yaws.push_back(peak.position * bin_rad);
+    yaws.push_back(peak.position * bin_rad + M_PI);  // same spectrum, period pi
+  }
+  return yaws;
+}
+
+// a's dominant wall normal: the argmax of its own spectrum (Section III-B alignment).
+double DominantDirection(const std::vector<double>& hs) {
+  const auto it = std::max_element(hs.begin(), hs.end());
+  return M_PI * double(it - hs.begin()) / hs.size();
+}
+
+std::vector<Eigen::Vector2f> RotatePoints(const std::vector<Eigen::Vector2f>& points,
+                                          double yaw_rad) {
+  const Eigen::Matrix2f R = Eigen::Rotation2Df(static_cast<float>(yaw_rad)).toRotationMatrix();
+  std::vector<Eigen::Vector2f> out;
+  out.reserve(points.size());
+  for (const auto& p : points) out.push_back(R * p);
+  return out;
+}
+
+}  // namespace
+
+std::vector<CellHypothesis> GenerateHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
+                                               const HypothesisOptions& options) {
+  CheckSameResolution(a, b);
+  const auto a_points = OccupiedCellCenters(a);
+  const auto b_points = OccupiedCellCenters(b);
+  if (a_points.empty() || b_points.empty()) return {};
+
+  const auto hs_a = HoughSpectrum(
+      ComputeHoughTransform(SamplePoints(a_points, options.hough_sampling), options.hough));
+  const auto hs_b = HoughSpectrum(
+      ComputeHoughTransform(SamplePoints(b_points, options.hough_sampling), options.hough));
+
+  const auto b_spectra_points = SamplePoints(b_points, options.spectra_sampling);
+  std::unique_ptr<CorrelationTranslation> correlation;
+  std::unique_ptr<XySpectraTranslation> spectra;
+  if (options.translation.method == TranslationMethod::kCorrelation2D) {
+    const double b_diagonal = std::hypot(double(b.width()), double(b.height()));
+    correlation = std::make_unique<CorrelationTranslation>(a, b_diagonal, options.translation);
+  } else {
+    spectra = std::make_unique<XySpectraTranslation>(
+        SamplePoints(a_points, options.spectra_sampling), DominantDirection(hs_a),
+        options.translation);
+  }
+
+  std::vector<CellHypothesis> candidates;
+  for (const double yaw : RotationCandidates(hs_a, hs_b, options.rotation_peaks)) {
+    const auto b_rotated = RotatePoints(b_spectra_points, yaw);
+    const auto translations = correlation ? correlation->Find(b_rotated) : spectra->Find(b_rotated);
+    for (const auto& t : translations) {
+      const Pose2 T_ga_gb(t.t_cells, yaw);
+      // Ranking pass on every other row and column: 4x cheaper, same order in practice.
+      candidates.push_back({T_ga_gb, CountAgreement(a, b, T_ga_gb, 2).omega()});
+    }
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [](const auto& l, const auto& r) { return l.omega > r.omega; });
+  candidates = RemoveDuplicates(std::move(candidates), options);
+  if (static_cast<int>(candidates.size()) > options.max_hypotheses) {
+    candidates.resize(std::max(options.max_hypotheses, 0));
+  }
+  for (auto& c : candidates) c.omega = CountAgreement(a, b, c.T_ga_gb).omega();  // Eq. (1)
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const auto& l, const auto& r) { return l.omega > r.omega; });
+  return candidates;
+}
+
+std::vector<CellHypothesis> RemoveDuplicates(std::vector<CellHypothesis> sorted,
+                                             const HypothesisOptions& options) {
+  std::vector<CellHypothesis> kept;
+  for (const auto& c : sorted) {
+    const bool duplicate = std::any_of(kept.begin(), kept.end(), [&](const CellHypothesis& k) {
+      const Pose2 delta = k.T_ga_gb.inverse() * c.T_ga_gb;
+      return std::abs(delta.yaw_rad()) < options.duplicate_yaw_rad &&
+             (k.T_ga_gb.translation_m() - c.T_ga_gb.translation_m()).norm() <
+                 options.duplicate_translation_cells;
+    });
+    if (!duplicate) kept.push_back(c);
+  }
+  return kept;
+}
+
+Pose2 MapPoseFromCellPose(const GridGeometry& a, const GridGeometry& b, const Pose2& T_ga_gb) {
+  const Pose2 T_ga_gb_m(T_ga_gb.translation_m() * a.resolution_m(), T_ga_gb.yaw_rad());
+  return a.T_map_grid() * T_ga_gb_m * b.T_map_grid().inverse();
+}
+
+Pose2 CellPoseFromMapPose(const GridGeometry& a, const GridGeometry& b, const Pose2& T_a_b) {
+  const Pose2 T_ga_gb_m = a.T_map_grid().inverse() * T_a_b * b.T_map_grid();
+  return Pose2(T_ga_gb_m.translation_m() / a.resolution_m(), T_ga_gb_m.yaw_rad());
+}
+
+}  // namespace fleetmerge

@@ -1,0 +1,68 @@
+#include "core/point_sampling.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace fleetmerge {
+
+std::vector<Eigen::Vector2f> OccupiedCellCenters(const OccupancyGrid& grid) {
+  std::vector<Eigen::Vector2f> points;
+  const auto occupied = static_cast<std::uint8_t>(CellState::kOccupied);
+  for (int j = 0; j < grid.height(); ++j) {
+    const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
+    for (int i = 0; i < grid.width(); ++i) {
+      if (row[i] == occupied) points.emplace_back(i + 0.5f, j + 0.5f);
+    }
+  }
+  return points;
+}
+
+std::vector<Eigen::Vector2f> SamplePoints(const std::vector<Eigen::Vector2f>& points,
+                                          const SamplingOptions& options) {
+  switch (options.mode) {
+    case SamplingMode::kAll:
+      return points;
+    case SamplingMode::kEveryKth: {
+      if (options.step < 1) {
+        std::ostringstream msg;
+        msg << "sampling step must be an integer >= 1, got " << options.step;
+        throw Error(msg.str());
+      }
+      std::vector<Eigen::Vector2f> out;
+      out.reserve(points.size() / options.step + 1);
+      for (std::size_t k = 0; k < points.size(); k += options.step) out.push_back(points[k]);
+      return out;
+    }
+    case SamplingMode::kRandomFraction: {
+      if (!(options.fraction > 0.0 && options.fraction <= 1.0)) {
+        std::ostringstream msg;
+        msg << "sampling fraction must be in (0, 1], got " << options.fraction;
+        throw Error(msg.str());
+      }
+      // Partial Fisher-Yates: an exact-size subset, then restored to scan order so that the
+      // result is a subsequence like the other modes.
+      const auto keep = static_cast<std::size_t>(std::max<double>(
+          points.empty() ? 0.0 : 1.0, std::round(options.fraction * points.size())));
+      std::vector<std::size_t> index(points.size());
+      std::iota(index.begin(), index.end(), 0);
+      std::mt19937 rng(options.seed);
+      for (std::size_t k = 0; k < keep; ++k) {
+        const std::size_t pick = k + rng() % (index.size() - k);
+        std::swap(index[k], index[pick]);
+      }
+      index.resize(keep);
+      std::sort(index.begin(), index.end());
+      std::vector<Eigen::Vector2f> out;
+      out.reserve(keep);
+      for (std::size_t k : index) out.push_back(points[k]);
+      return out;
+    }
+  }
+  return points;
+}
+
+}  // namespace fleetmerge

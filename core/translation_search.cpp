@@ -1,0 +1,96 @@
+#include "core/translation_search.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Geometry>
+#include <opencv2/imgproc.hpp>
+
+namespace fleetmerge {
+namespace {
+
+int PoolingFor(const OccupancyGrid& a, double b_extent_cells, int coarse_max_side) {
+  const double side = std::max({double(a.width()), double(a.height()), b_extent_cells});
+  return std::max(1, static_cast<int>(std::ceil(side / std::max(coarse_max_side, 8))));
+}
+
+// Score image of a on the coarse grid: blurred walls minus a penalty on pure free space.
+cv::Mat1f CoarseScoreImage(const OccupancyGrid& a, int pooling, double free_penalty) {
+  const int w = (a.width() + pooling - 1) / pooling, h = (a.height() + pooling - 1) / pooling;
+  cv::Mat1f occupied = cv::Mat1f::zeros(h, w), free = cv::Mat1f::zeros(h, w);
+  for (int j = 0; j < a.height(); ++j) {
+    const std::uint8_t* row = a.cells().ptr<std::uint8_t>(j);
+    for (int i = 0; i < a.width(); ++i) {
+      if (row[i] == std::uint8_t(CellState::kOccupied)) occupied(j / pooling, i / pooling) = 1.f;
+      if (row[i] == std::uint8_t(CellState::kFree)) free(j / pooling, i / pooling) = 1.f;
+    }
+  }
+  cv::Mat1f score;
+  // The blur widens the peak so a rotation off by a fraction of a degree still correlates.
+  cv::GaussianBlur(occupied, score, cv::Size(5, 5), 1.0);
+  free.setTo(0.f, occupied > 0.f);
+  return score - free_penalty * free;
+}
+
+// Local maxima of a 2-D surface (5x5 neighbourhood), largest first, with sub-pixel parabolas.
+std::vector<TranslationCandidate> SurfacePeaks(const cv::Mat1f& surface, int count) {
+  cv::Mat1f dilated;
+  cv::dilate(surface, dilated, cv::Mat(), cv::Point(-1, -1), 2);
+  std::vector<TranslationCandidate> peaks;
+  for (int r = 1; r + 1 < surface.rows; ++r) {
+    for (int c = 1; c + 1 < surface.cols; ++c) {
+      const float v = surface(r, c);
+      if (v <= 0.f || v < dilated(r, c)) continue;
+      const auto vertex = [](float m, float z, float p) {
+        const float curvature = m - 2.f * z + p;
+        return curvature < 0.f ? 0.5f * (m - p) / curvature : 0.f;
+      };
+      const double dx = c + vertex(surface(r, c - 1), v, surface(r, c + 1));
+      const double dy = r + vertex(surface(r - 1, c), v, surface(r + 1, c));
+      peaks.push_back({Eigen::Vector2d(dx, dy), v});
+    }
+  }
+  std::sort(peaks.begin(), peaks.end(),
+            [](const auto& l, const auto& r) { return l.score > r.score; });
+  if (static_cast<int>(peaks.size()) > count) peaks.resize(count);
+  return peaks;
+}
+
+}  // namespace
+
+CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, double b_extent_cells,
+                                               const TranslationOptions& options)
+    : options_(options),
+      pooling_(PoolingFor(a, b_extent_cells, options.coarse_max_side)),
+      max_b_size_(static_cast<int>(std::ceil(b_extent_cells / pooling_)) + 2,
+                  static_cast<int>(std::ceil(b_extent_cells / pooling_)) + 2),
+      correlator_(CoarseScoreImage(a, pooling_, options.free_penalty), max_b_size_) {}
+
+std::vector<TranslationCandidate> CorrelationTranslation::Find(
+    const std::vector<Eigen::Vector2f>& b_rotated) const {
+  if (b_rotated.empty()) return {};
+  Eigen::Vector2f q_min = b_rotated.front(), q_max = b_rotated.front();
+  for (const auto& q : b_rotated) {
+    q_min = q_min.cwiseMin(q);
+    q_max = q_max.cwiseMax(q);
+  }
+  const int w = std::min(max_b_size_.width, int((q_max.x() - q_min.x()) / pooling_) + 1);
+  const int h = std::min(max_b_size_.height, int((q_max.y() - q_min.y()) / pooling_) + 1);
+  cv::Mat1f b_image = cv::Mat1f::zeros(h, w);
+  for (const auto& q : b_rotated) {
+    const int u = std::min(w - 1, int((q.x() - q_min.x()) / pooling_));
+    const int v = std::min(h - 1, int((q.y() - q_min.y()) / pooling_));
+    b_image(v, u) = 1.f;
+  }
+  const cv::Mat1f surface = correlator_.Correlate(b_image);
+  // b pixel u covers q - q_min in [p u, p u + p); shifted by d it meets a pixel u + d, which
+  // covers a cells [p (u + d), ...): so q + t lies in a with t = p d - q_min.
+  std::vector<TranslationCandidate> out = SurfacePeaks(surface, options_.candidates);
+  for (auto& c : out) {
+    const Eigen::Vector2d d(c.t_cells.x() - (w - 1), c.t_cells.y() - (h - 1));
+    c.t_cells = pooling_ * d - q_min.cast<double>();
+  }
+  return out;
+}
+
+}  // namespace fleetmerge
