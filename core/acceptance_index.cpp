@@ -4,8 +4,21 @@
 
 namespace fleetmerge {
 
+RowSpans KnownRowSpans(const OccupancyGrid& grid) {
+  RowSpans spans(grid.height(), {0, 0});
+  const auto unknown = static_cast<std::uint8_t>(CellState::kUnknown);
+  for (int j = 0; j < grid.height(); ++j) {
+    const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
+    int first = 0, last = grid.width() - 1;
+    while (first <= last && row[first] == unknown) ++first;
+    while (last >= first && row[last] == unknown) --last;
+    spans[j] = {first, last + 1};
+  }
+  return spans;
+}
+
 Agreement CountAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb,
-                         int stride) {
+                         int stride, const RowSpans* b_spans) {
   stride = std::max(stride, 1);
   Agreement result;
   const Eigen::Matrix2d R = T_ga_gb.rotation();
@@ -14,8 +27,14 @@ Agreement CountAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const P
   const int a_height = a.height();
   for (int j = 0; j < b.height(); j += stride) {
     const std::uint8_t* b_row = b.cells().ptr<std::uint8_t>(j);
-    Eigen::Vector2d p_a = T_ga_gb * Eigen::Vector2d(0.5, j + 0.5);
-    for (int i = 0; i < b.width(); i += stride, p_a += step) {
+    int begin = 0, end = b.width();
+    if (b_spans != nullptr) {
+      // Round the span start up to the stride's lattice so strided results do not change.
+      begin = ((*b_spans)[j].first + stride - 1) / stride * stride;
+      end = (*b_spans)[j].second;
+    }
+    Eigen::Vector2d p_a = T_ga_gb * Eigen::Vector2d(begin + 0.5, j + 0.5);
+    for (int i = begin; i < end; i += stride, p_a += step) {
       const std::uint8_t state_b = b_row[i];
       if (state_b == static_cast<std::uint8_t>(CellState::kUnknown)) continue;
       const int ia = static_cast<int>(std::floor(p_a.x()));

@@ -76,6 +76,7 @@ std::vector<CellHypothesis> GenerateHypotheses(const OccupancyGrid& a, const Occ
         options.translation);
   }
 
+  const RowSpans b_spans = KnownRowSpans(b);
   std::vector<CellHypothesis> candidates;
   for (const double yaw : RotationCandidates(hs_a, hs_b, options.rotation_peaks)) {
     const auto b_rotated = RotatePoints(b_spectra_points, yaw);
@@ -83,7 +84,7 @@ std::vector<CellHypothesis> GenerateHypotheses(const OccupancyGrid& a, const Occ
     for (const auto& t : translations) {
       const Pose2 T_ga_gb(t.t_cells, yaw);
       // Ranking pass on every other row and column: 4x cheaper, same order in practice.
-      candidates.push_back({T_ga_gb, CountAgreement(a, b, T_ga_gb, 2).omega()});
+      candidates.push_back({T_ga_gb, CountAgreement(a, b, T_ga_gb, 2, &b_spans).omega()});
     }
   }
   std::sort(candidates.begin(), candidates.end(),
@@ -92,7 +93,7 @@ std::vector<CellHypothesis> GenerateHypotheses(const OccupancyGrid& a, const Occ
   if (static_cast<int>(candidates.size()) > options.max_hypotheses) {
     candidates.resize(std::max(options.max_hypotheses, 0));
   }
-  for (auto& c : candidates) c.omega = CountAgreement(a, b, c.T_ga_gb).omega();  // Eq. (1)
+  for (auto& c : candidates) c.omega = CountAgreement(a, b, c.T_ga_gb, 1, &b_spans).omega();  // Eq. (1)
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const auto& l, const auto& r) { return l.omega > r.omega; });
   return candidates;

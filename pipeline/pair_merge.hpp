@@ -1,0 +1,44 @@
+// The two-map job behind `fleetmerge pair`: Carpin's hypotheses (core/), each refined locally
+// with Ceres (refine/), re-scored by omega (Eq. 1) and re-ranked, as poses of b's map frame in a's
+// map frame in metres and radians.
+#pragma once
+
+#include <vector>
+
+#include "core/hypothesis_generator.hpp"
+#include "core/occupancy_grid.hpp"
+#include "core/pose2.hpp"
+#include "refine/local_alignment.hpp"
+
+namespace fleetmerge {
+
+struct PairOptions {
+  HypothesisOptions hypotheses;
+  bool refine = true;
+  double refine_truncation_cells = 6.0;  // basin of the local alignment
+  // Every hypothesis is refined cheaply (few wall points); the best few again with more.
+  LocalAlignmentOptions quick_refine{300, 15, 1.0};
+  LocalAlignmentOptions final_refine{1500, 25, 1.0};
+  int final_refine_count = 1;
+};
+
+struct PairHypothesis {
+  Pose2 T_a_b;  // pose of b's map frame in a's map frame (metres, radians)
+  double omega = 0.0;
+};
+
+struct PairResult {
+  std::vector<PairHypothesis> hypotheses;  // best (highest omega) first
+  double resolution_m = 0.0;               // the resolution the maps were compared at
+  bool resampled = false;                  // one map was resampled to the other's (finer) cells
+};
+
+// Maps of different resolutions are compared at the finer one (the coarser map is resampled;
+// its map frame is unchanged, so the poses stay valid for the original files).
+PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairOptions& options);
+
+// The hypotheses of two maps that already share a resolution, best first, in cell units.
+std::vector<CellHypothesis> RankedCellHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
+                                                 const PairOptions& options);
+
+}  // namespace fleetmerge

@@ -1,0 +1,45 @@
+// Local refinement of a pairwise hypothesis to sub-degree, sub-cell accuracy (beyond the paper).
+//
+// The Hough steps quantise rotation to 180/n_theta degrees and the coarse correlation translation
+// to a few cells. Starting there, we minimise over T = T_ga_gb (cells)
+//   sum_p rho( D_a(T p) )  +  sum_q rho( D_b(T^-1 q) )
+// where p are b's wall cells, q are a's wall cells, D_x is x's truncated wall distance field and
+// rho a Cauchy loss: a symmetric, robust chamfer alignment solved with Ceres.
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/occupancy_grid.hpp"
+#include "core/pose2.hpp"
+#include "refine/wall_distance_field.hpp"
+
+namespace fleetmerge {
+
+struct LocalAlignmentOptions {
+  int max_points = 1000;          // wall cells used per map (every k-th), bounds the cost
+  int max_iterations = 20;
+  double loss_scale_cells = 1.0;  // Cauchy scale: residuals beyond ~1 cell are outliers
+};
+
+// What one map contributes to alignments: its truncated wall distance field and its wall cells
+// (cell centres, cell units, grid frame). Built once per map, shared by all its alignments.
+struct AlignmentTarget {
+  // truncation_cells caps the distance field: the basin of convergence.
+  explicit AlignmentTarget(const OccupancyGrid& grid, double truncation_cells = 6.0);
+  WallDistanceField field;
+  std::vector<Eigen::Vector2d> wall_points;
+};
+
+struct LocalAlignmentResult {
+  Pose2 T_ga_gb;            // refined, cell units
+  double cost = 0.0;        // final robust cost per point
+  bool converged = false;   // Ceres reported a usable solution
+};
+
+LocalAlignmentResult RefineAlignment(const AlignmentTarget& a, const AlignmentTarget& b,
+                                     const Pose2& T_ga_gb_initial,
+                                     const LocalAlignmentOptions& options);
+
+}  // namespace fleetmerge
