@@ -8,9 +8,8 @@
 // shifts each column along rho, which leaves HS unchanged: that is why HS isolates rotation.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 namespace fleetmerge {
 

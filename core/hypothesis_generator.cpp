@@ -1,11 +1,10 @@
 #include "core/hypothesis_generator.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
-
-#include <Eigen/Geometry>
 
 #include "core/acceptance_index.hpp"
 #include "core/circular_correlation.hpp"
@@ -71,9 +70,9 @@ std::vector<CellHypothesis> GenerateHypotheses(const OccupancyGrid& a, const Occ
     const double b_diagonal = std::hypot(double(b.width()), double(b.height()));
     correlation = std::make_unique<CorrelationTranslation>(a, b_diagonal, options.translation);
   } else {
-    spectra = std::make_unique<XySpectraTranslation>(
-        SamplePoints(a_points, options.spectra_sampling), DominantDirection(hs_a),
-        options.translation);
+    spectra =
+        std::make_unique<XySpectraTranslation>(SamplePoints(a_points, options.spectra_sampling),
+                                               DominantDirection(hs_a), options.translation);
   }
 
   const RowSpans b_spans = KnownRowSpans(b);
@@ -93,7 +92,8 @@ std::vector<CellHypothesis> GenerateHypotheses(const OccupancyGrid& a, const Occ
   if (static_cast<int>(candidates.size()) > options.max_hypotheses) {
     candidates.resize(std::max(options.max_hypotheses, 0));
   }
-  for (auto& c : candidates) c.omega = CountAgreement(a, b, c.T_ga_gb, 1, &b_spans).omega();  // Eq. (1)
+  for (auto& c : candidates)
+    c.omega = CountAgreement(a, b, c.T_ga_gb, 1, &b_spans).omega();  // Eq. (1)
   std::stable_sort(candidates.begin(), candidates.end(),
                    [](const auto& l, const auto& r) { return l.omega > r.omega; });
   return candidates;

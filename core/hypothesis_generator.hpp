@@ -25,7 +25,7 @@ struct HypothesisOptions {
   SamplingOptions spectra_sampling;  // points used for the X/Y spectra (Section III-D)
   int rotation_peaks = 4;            // the paper's n: local maxima of C taken
   TranslationOptions translation;
-  int max_hypotheses = 4;            // returned, best first
+  int max_hypotheses = 4;  // returned, best first
   // Candidates closer than this are one hypothesis (the better omega is kept).
   double duplicate_yaw_rad = 2.0 * M_PI / 180.0;
   double duplicate_translation_cells = 3.0;

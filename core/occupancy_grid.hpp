@@ -3,11 +3,10 @@
 // map frame's +y), so cells()(j, i) is cell (i, j): no image-row flip inside core/.
 #pragma once
 
-#include <cstdint>
-#include <vector>
-
 #include <Eigen/Core>
+#include <cstdint>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "core/grid_geometry.hpp"
 

@@ -5,10 +5,9 @@
 // transform", Kiryati et al.) or every k-th point (the "incremental" approach).
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "core/occupancy_grid.hpp"
 

@@ -1,8 +1,7 @@
 #include "core/pose2.hpp"
 
-#include <cmath>
-
 #include <Eigen/Geometry>
+#include <cmath>
 
 namespace fleetmerge {
 
@@ -18,9 +17,7 @@ Pose2::Pose2(double x_m, double y_m, double yaw_rad)
 Pose2::Pose2(const Eigen::Vector2d& translation_m, double yaw_rad)
     : translation_m_(translation_m), yaw_rad_(WrapAngle(yaw_rad)) {}
 
-Eigen::Matrix2d Pose2::rotation() const {
-  return Eigen::Rotation2Dd(yaw_rad_).toRotationMatrix();
-}
+Eigen::Matrix2d Pose2::rotation() const { return Eigen::Rotation2Dd(yaw_rad_).toRotationMatrix(); }
 
 Pose2 Pose2::inverse() const {
   const Eigen::Matrix2d R_inv = rotation().transpose();

@@ -1,9 +1,8 @@
 #include "core/translation_search.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/Geometry>
 #include <opencv2/imgproc.hpp>
 
 namespace fleetmerge {

@@ -10,9 +10,8 @@
 //   walls are not laid across a's rooms. More robust on real maps (see README).
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "core/correlation_2d.hpp"
 #include "core/occupancy_grid.hpp"
@@ -23,9 +22,9 @@ enum class TranslationMethod { kCorrelation2D, kXySpectra };
 
 struct TranslationOptions {
   TranslationMethod method = TranslationMethod::kCorrelation2D;
-  int candidates = 3;            // translation peaks kept per rotation
-  int coarse_max_side = 128;     // kCorrelation2D: coarse image side that sets the pooling
-  double free_penalty = 0.5;     // kCorrelation2D: weight of b walls on a's free space
+  int candidates = 3;         // translation peaks kept per rotation
+  int coarse_max_side = 128;  // kCorrelation2D: coarse image side that sets the pooling
+  double free_penalty = 0.5;  // kCorrelation2D: weight of b walls on a's free space
 };
 
 struct TranslationCandidate {

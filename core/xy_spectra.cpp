@@ -1,8 +1,7 @@
 // The paper's translation step (Section III-B, Eq. 3 and 4, Algorithm 1 lines 6-12).
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/Geometry>
 
 #include "core/translation_search.hpp"
 
@@ -27,8 +26,7 @@ Spectrum AxisSpectrum(const std::vector<Eigen::Vector2f>& points, int axis) {
 }
 
 // Shifts dx (in cells) with the largest linear cross-correlation sum_u A(u + s) B(u), best first.
-std::vector<std::pair<double, double>> BestShifts(const Spectrum& a, const Spectrum& b,
-                                                  int count) {
+std::vector<std::pair<double, double>> BestShifts(const Spectrum& a, const Spectrum& b, int count) {
   const int na = static_cast<int>(a.counts.size()), nb = static_cast<int>(b.counts.size());
   std::vector<double> corr(na + nb - 1, 0.0);
   for (int s = -(nb - 1); s < na; ++s) {

@@ -58,9 +58,11 @@ PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairO
   result.resolution_m = std::min(ra, rb);
   result.resampled = std::abs(ra - rb) > 1e-9 * result.resolution_m;
   const OccupancyGrid a_same = ra > result.resolution_m && result.resampled
-                                   ? ResampleToResolution(a, result.resolution_m) : a;
+                                   ? ResampleToResolution(a, result.resolution_m)
+                                   : a;
   const OccupancyGrid b_same = rb > result.resolution_m && result.resampled
-                                   ? ResampleToResolution(b, result.resolution_m) : b;
+                                   ? ResampleToResolution(b, result.resolution_m)
+                                   : b;
   for (const auto& h : RankedCellHypotheses(a_same, b_same, options)) {
     result.hypotheses.push_back(
         {MapPoseFromCellPose(a_same.geometry(), b_same.geometry(), h.T_ga_gb), h.omega});

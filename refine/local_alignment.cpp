@@ -1,8 +1,8 @@
 #include "refine/local_alignment.hpp"
 
-#include <algorithm>
-
 #include <ceres/ceres.h>
+
+#include <algorithm>
 
 #include "core/point_sampling.hpp"  // OccupiedCellCenters
 

@@ -7,9 +7,8 @@
 // rho a Cauchy loss: a symmetric, robust chamfer alignment solved with Ceres.
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
@@ -18,7 +17,7 @@
 namespace fleetmerge {
 
 struct LocalAlignmentOptions {
-  int max_points = 1000;          // wall cells used per map (every k-th), bounds the cost
+  int max_points = 1000;  // wall cells used per map (every k-th), bounds the cost
   int max_iterations = 20;
   double loss_scale_cells = 1.0;  // Cauchy scale: residuals beyond ~1 cell are outliers
 };
@@ -33,9 +32,9 @@ struct AlignmentTarget {
 };
 
 struct LocalAlignmentResult {
-  Pose2 T_ga_gb;            // refined, cell units
-  double cost = 0.0;        // final robust cost per point
-  bool converged = false;   // Ceres reported a usable solution
+  Pose2 T_ga_gb;           // refined, cell units
+  double cost = 0.0;       // final robust cost per point
+  bool converged = false;  // Ceres reported a usable solution
 };
 
 LocalAlignmentResult RefineAlignment(const AlignmentTarget& a, const AlignmentTarget& b,

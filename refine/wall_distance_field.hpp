@@ -3,12 +3,12 @@
 // Built once per map and shared by all the pairs that map is part of.
 #pragma once
 
-#include <memory>
-#include <vector>
+#include <ceres/cubic_interpolation.h>
 
 #include <Eigen/Core>
-#include <ceres/cubic_interpolation.h>
+#include <memory>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "core/occupancy_grid.hpp"
 

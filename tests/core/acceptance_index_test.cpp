@@ -1,8 +1,8 @@
 #include "core/acceptance_index.hpp"
 
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <random>
 
 namespace fleetmerge {
 namespace {
@@ -51,8 +51,10 @@ TEST(AcceptanceIndex, MatchesMaterialisedRotatedCopy) {
   // Oracle: rotate b explicitly cell by cell into a's grid and count there.
   std::mt19937 rng(9);
   OccupancyGrid a(GridGeometry(0.05, {30, 30})), b(GridGeometry(0.05, {20, 15}));
-  for (int j = 0; j < 30; ++j) for (int i = 0; i < 30; ++i) a.set({i, j}, static_cast<CellState>(rng() % 3));
-  for (int j = 0; j < 15; ++j) for (int i = 0; i < 20; ++i) b.set({i, j}, static_cast<CellState>(rng() % 3));
+  for (int j = 0; j < 30; ++j)
+    for (int i = 0; i < 30; ++i) a.set({i, j}, static_cast<CellState>(rng() % 3));
+  for (int j = 0; j < 15; ++j)
+    for (int i = 0; i < 20; ++i) b.set({i, j}, static_cast<CellState>(rng() % 3));
   const Pose2 T_ga_gb(12.3, 4.1, 0.9);
   Agreement expected;
   for (int j = 0; j < 15; ++j) {
@@ -79,7 +81,8 @@ namespace {
 TEST(AcceptanceIndex, RowSpansGiveTheSameCountsAtEveryStride) {
   std::mt19937 rng(21);
   OccupancyGrid a(GridGeometry(0.05, {60, 60})), b(GridGeometry(0.05, {40, 30}));
-  for (int j = 0; j < 60; ++j) for (int i = 0; i < 60; ++i) a.set({i, j}, static_cast<CellState>(rng() % 3));
+  for (int j = 0; j < 60; ++j)
+    for (int i = 0; i < 60; ++i) a.set({i, j}, static_cast<CellState>(rng() % 3));
   // b: a tilted known band with unknown margins, like a re-framed map.
   for (int j = 0; j < 30; ++j) {
     for (int i = 0; i < 40; ++i) {

@@ -1,8 +1,8 @@
 #include "core/correlation_2d.hpp"
 
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <random>
 
 namespace fleetmerge {
 namespace {

@@ -1,8 +1,8 @@
 #include "core/grid_geometry.hpp"
 
-#include <cmath>
-
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "core/error.hpp"
 

@@ -1,9 +1,9 @@
 #include "core/hough_spectrum.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
-
-#include <gtest/gtest.h>
 
 #include "core/circular_correlation.hpp"
 
@@ -23,7 +23,9 @@ std::vector<Eigen::Vector2f> Walls(double yaw) {
   std::vector<Eigen::Vector2f> points;
   const Eigen::Vector2f c(30.f, 30.f);
   const float cy = std::cos(yaw), sy = std::sin(yaw);
-  auto add = [&](float x, float y) { points.emplace_back(c.x() + cy * x - sy * y, c.y() + sy * x + cy * y); };
+  auto add = [&](float x, float y) {
+    points.emplace_back(c.x() + cy * x - sy * y, c.y() + sy * x + cy * y);
+  };
   for (int k = -25; k <= 25; ++k) add(float(k), -10.f);  // long wall
   for (int k = -10; k <= 8; ++k) add(-25.f, float(k));   // short wall
   return points;

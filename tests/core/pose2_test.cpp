@@ -1,9 +1,9 @@
 #include "core/pose2.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <random>
-
-#include <gtest/gtest.h>
 
 namespace fleetmerge {
 namespace {

@@ -7,7 +7,7 @@
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
 
-namespace fleetmerge::testing {
+namespace fleetmerge {
 
 struct CutPairOptions {
   double min_overlap = 0.35;  // share of the known extent along the split axis seen by both
@@ -33,6 +33,7 @@ struct PoseError {
   double yaw_deg = 0.0;
   double mean_displacement_cells = 0.0;
 };
-PoseError ComparePoses(const OccupancyGrid& b, const Pose2& T_a_b_estimate, const Pose2& T_a_b_true);
+PoseError ComparePoses(const OccupancyGrid& b, const Pose2& T_a_b_estimate,
+                       const Pose2& T_a_b_true);
 
-}  // namespace fleetmerge::testing
+}  // namespace fleetmerge

@@ -1,10 +1,9 @@
-#include "tests/support/cut_pair.hpp"
+#include "pipeline/ground_truth_pair.hpp"
 
 #include <cmath>
-
 #include <opencv2/imgproc.hpp>
 
-namespace fleetmerge::testing {
+namespace fleetmerge {
 namespace {
 
 // Bounding box (in cells) of the known cells.
@@ -28,7 +27,8 @@ GroundTruthPair CutPair(const OccupancyGrid& building, double yaw_rad, std::mt19
   const cv::Rect box = KnownBox(building);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const bool split_x = unit(rng) < 0.5;
-  const double overlap = options.min_overlap + unit(rng) * (options.max_overlap - options.min_overlap);
+  const double overlap =
+      options.min_overlap + unit(rng) * (options.max_overlap - options.min_overlap);
   const int length = split_x ? box.width : box.height;
   const int a_end = static_cast<int>(length * (0.5 + overlap / 2));
   const int b_begin = static_cast<int>(length * (0.5 - overlap / 2));
@@ -88,4 +88,4 @@ PoseError ComparePoses(const OccupancyGrid& b, const Pose2& T_a_b_estimate,
   return error;
 }
 
-}  // namespace fleetmerge::testing
+}  // namespace fleetmerge

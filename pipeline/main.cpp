@@ -1,0 +1,53 @@
+// The `fleetmerge` command line: subcommands over the pipeline library.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <string>
+
+#include "core/error.hpp"
+#include "pipeline/cli_options.hpp"
+#include "pipeline/example_command.hpp"
+#include "pipeline/pair_command.hpp"
+
+int main(int argc, char** argv) {
+  using namespace fleetmerge;
+  CLI::App app{
+      "fleetmerge: merge the occupancy grid maps of a robot fleet (Carpin's Hough-spectrum "
+      "method)"};
+  app.require_subcommand(1);
+
+  PairCommand pair;
+  CLI::App* pair_app = app.add_subcommand(
+      "pair", "Rank the transformations that overlay map B on map A (pose of B's frame in A's)");
+  pair_app->add_option("a", pair.a_yaml, "map A (map_server YAML)")->required();
+  pair_app->add_option("b", pair.b_yaml, "map B (map_server YAML)")->required();
+  pair_app->add_option("-n", pair.hypotheses, "number of hypotheses")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  pair_app->add_flag("--json", pair.json, "print JSON instead of a table");
+  pair_app->add_option("--out", pair.out_dir,
+                       "also write the merged map of the best hypothesis into this folder");
+  AddMethodOptions(*pair_app, pair.options);
+
+  ExampleCommand example;
+  CLI::App* example_app = app.add_subcommand(
+      "example", "Write two overlapping robot maps of a synthetic office with the true answer");
+  example_app->add_option("dir", example.out_dir, "output folder")->required();
+  example_app->add_option("--seed", example.seed, "random seed")->capture_default_str();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (pair_app->parsed()) return RunPairCommand(pair, std::cout);
+    if (example_app->parsed()) return RunExampleCommand(example, std::cout);
+  } catch (const Error& e) {
+    std::cerr << "fleetmerge: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "fleetmerge: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
