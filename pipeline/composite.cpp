@@ -1,0 +1,194 @@
+#include "pipeline/composite.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace fleetmerge {
+namespace {
+
+// Sizes come from metric ratios such as 0.5 / 0.1 = 5.000000000000001; the slack keeps them from
+// rounding up to an extra cell.
+constexpr double kIndexSlack = 1e-9;
+
+// Continuous cell coordinates u in the input grid of the centre of target cell (i, j):
+//   u = origin + i * step_i + j * step_j.
+// A rigid motion of a regular grid is affine in the cell indices, so the inner loop needs only
+// multiply-adds, no trigonometry and no pose composition per cell.
+struct CellAffine {
+  Eigen::Vector2d origin;
+  Eigen::Vector2d step_i;
+  Eigen::Vector2d step_j;
+};
+
+// Pose of the target grid frame in the input's grid frame:
+//   T_ingrid_targetgrid = T_ingrid_inmap * T_inmap_merged * T_merged_targetgrid.
+Pose2 InputGridFromTargetGrid(const CompositeInput& input, const GridGeometry& target) {
+  return input.grid->geometry().T_map_grid().inverse() * input.T_merged_map.inverse() *
+         target.T_map_grid();
+}
+
+CellAffine TargetToInputCells(const CompositeInput& input, const GridGeometry& target) {
+  const Pose2 T_in_target = InputGridFromTargetGrid(input, target);
+  const double input_resolution_m = input.grid->geometry().resolution_m();
+  // Target cell (i, j) has its centre at ((i, j) + 0.5) * R in the target grid frame; dividing
+  // the input-grid point by r turns metres into input cells.
+  const Eigen::Matrix2d A = T_in_target.rotation() * (target.resolution_m() / input_resolution_m);
+  CellAffine affine;
+  affine.step_i = A.col(0);
+  affine.step_j = A.col(1);
+  affine.origin = T_in_target.translation_m() / input_resolution_m + 0.5 * (A.col(0) + A.col(1));
+  return affine;
+}
+
+// Target cells whose centres can fall inside the input grid: the input rectangle's bounding box
+// in target cells, widened by a cell against rounding, clipped to the target.
+cv::Rect TargetRegionOfInput(const CompositeInput& input, const GridGeometry& target) {
+  const GridGeometry& in = input.grid->geometry();
+  const Pose2 T_target_in = InputGridFromTargetGrid(input, target).inverse();
+  Eigen::Array2d lo = Eigen::Array2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Array2d hi = -lo;
+  for (const double fx : {0.0, 1.0}) {
+    for (const double fy : {0.0, 1.0}) {
+      const Eigen::Vector2d corner_in(fx * in.width() * in.resolution_m(),
+                                      fy * in.height() * in.resolution_m());
+      const Eigen::Array2d c = (T_target_in * corner_in).array() / target.resolution_m();
+      lo = lo.min(c);
+      hi = hi.max(c);
+    }
+  }
+  const int x0 = std::max(0, static_cast<int>(std::floor(lo.x())) - 1);
+  const int y0 = std::max(0, static_cast<int>(std::floor(lo.y())) - 1);
+  const int x1 = std::min(target.width(), static_cast<int>(std::ceil(hi.x())) + 1);
+  const int y1 = std::min(target.height(), static_cast<int>(std::ceil(hi.y())) + 1);
+  return cv::Rect(x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0));
+}
+
+// Writes the input's state at each target cell centre of `region` into `out` (target-sized);
+// cells of the region outside the input are left as they are.
+void SampleRegion(const CompositeInput& input, const CellAffine& affine, const cv::Rect& region,
+                  cv::Mat1b& out) {
+  const cv::Mat1b& cells = input.grid->cells();
+  const double width = cells.cols;
+  const double height = cells.rows;
+  for (int j = region.y; j < region.y + region.height; ++j) {
+    const Eigen::Vector2d row_start = affine.origin + j * affine.step_j;
+    std::uint8_t* out_row = out.ptr<std::uint8_t>(j);
+    for (int i = region.x; i < region.x + region.width; ++i) {
+      // u = row_start + i * step_i, not a running sum: no drift along long rows.
+      const double ux = row_start.x() + i * affine.step_i.x();
+      const double uy = row_start.y() + i * affine.step_i.y();
+      // Range check before the int cast, so truncation equals floor (both are >= 0 here).
+      if (!(ux >= 0.0 && uy >= 0.0 && ux < width && uy < height)) continue;
+      out_row[i] = cells(static_cast<int>(uy), static_cast<int>(ux));
+    }
+  }
+}
+
+void ValidateInputs(const std::vector<CompositeInput>& inputs, double resolution_m) {
+  if (!(resolution_m > 0.0) || !std::isfinite(resolution_m)) {
+    std::ostringstream msg;
+    msg << "composite: merged resolution must be a finite number > 0 m, got " << resolution_m;
+    throw Error(msg.str());
+  }
+  if (inputs.size() > std::numeric_limits<std::uint16_t>::max()) {
+    throw Error("composite: at most 65535 input maps (per-cell counts are 16-bit)");
+  }
+  for (std::size_t k = 0; k < inputs.size(); ++k) {
+    if (inputs[k].grid == nullptr) {
+      throw Error("composite: input " + std::to_string(k) + " has no grid (null pointer)");
+    }
+  }
+}
+
+// Axis-aligned merged geometry around all known cells plus a one-cell margin; a 0 x 0 geometry
+// when no input has a known cell. The origin is not snapped to a multiple of the resolution, so
+// an input at identity pose and the same resolution keeps its cell boundaries.
+GridGeometry MergedGeometry(const std::vector<CompositeInput>& inputs, double resolution_m) {
+  Eigen::Array2d lo = Eigen::Array2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Array2d hi = -lo;
+  for (const CompositeInput& input : inputs) {
+    if (input.grid->cells().empty()) continue;
+    // kUnknown is 0, so the bounding box of non-zero cells is that of the known cells.
+    const cv::Rect known = cv::boundingRect(input.grid->cells());
+    if (known.area() == 0) continue;
+    const GridGeometry& g = input.grid->geometry();
+    const Pose2 T_merged_grid = input.T_merged_map * g.T_map_grid();
+    for (const int x : {known.x, known.x + known.width}) {
+      for (const int y : {known.y, known.y + known.height}) {
+        const Eigen::Array2d c =
+            (T_merged_grid * (Eigen::Vector2d(x, y) * g.resolution_m())).array();
+        lo = lo.min(c);
+        hi = hi.max(c);
+      }
+    }
+  }
+  if (!(lo <= hi).all()) return GridGeometry(resolution_m, {0, 0});
+  const Eigen::Array2d origin_m = lo - resolution_m;
+  const Eigen::Array2d cells = (hi - lo) / resolution_m + 2.0;  // + margin on both sides
+  const Eigen::Array2i size(static_cast<int>(std::ceil(cells.x() - kIndexSlack)),
+                            static_cast<int>(std::ceil(cells.y() - kIndexSlack)));
+  return GridGeometry(resolution_m, size, Pose2(origin_m.matrix(), 0.0));
+}
+
+}  // namespace
+
+CellState Fuse(int occupied_count, int free_count, FusionMode mode) {
+  if (occupied_count == 0 && free_count == 0) return CellState::kUnknown;
+  bool occupied = false;
+  switch (mode) {
+    case FusionMode::kLogOdds:
+      occupied = occupied_count * kLogOddsOccupied + free_count * kLogOddsFree >= 0.0;
+      break;
+    case FusionMode::kMax:
+      occupied = occupied_count > 0;
+      break;
+    case FusionMode::kVote:
+      occupied = occupied_count >= free_count;
+      break;
+  }
+  return occupied ? CellState::kOccupied : CellState::kFree;
+}
+
+OccupancyGrid SampleOnto(const CompositeInput& input, const GridGeometry& target) {
+  if (input.grid == nullptr) throw Error("SampleOnto: the input has no grid (null pointer)");
+  OccupancyGrid out(target);
+  SampleRegion(input, TargetToInputCells(input, target), TargetRegionOfInput(input, target),
+               out.mutable_cells());
+  return out;
+}
+
+OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolution_m,
+                        FusionMode mode) {
+  ValidateInputs(inputs, resolution_m);
+  const GridGeometry geometry = MergedGeometry(inputs, resolution_m);
+  const cv::Size size(geometry.width(), geometry.height());
+  cv::Mat1w occupied_count = cv::Mat1w::zeros(size);
+  cv::Mat1w free_count = cv::Mat1w::zeros(size);
+  cv::Mat1b sampled(size);  // scratch reused per input; only each input's region is touched
+  for (const CompositeInput& input : inputs) {
+    const cv::Rect region = TargetRegionOfInput(input, geometry);
+    if (region.area() == 0) continue;
+    sampled(region).setTo(static_cast<std::uint8_t>(CellState::kUnknown));
+    SampleRegion(input, TargetToInputCells(input, geometry), region, sampled);
+    cv::add(occupied_count(region), 1, occupied_count(region),
+            sampled(region) == static_cast<std::uint8_t>(CellState::kOccupied));
+    cv::add(free_count(region), 1, free_count(region),
+            sampled(region) == static_cast<std::uint8_t>(CellState::kFree));
+  }
+  OccupancyGrid merged(geometry);
+  for (int j = 0; j < size.height; ++j) {
+    const std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j);
+    const std::uint16_t* free_row = free_count.ptr<std::uint16_t>(j);
+    for (int i = 0; i < size.width; ++i) {
+      merged.set({i, j}, Fuse(occupied_row[i], free_row[i], mode));
+    }
+  }
+  return merged;
+}
+
+}  // namespace fleetmerge

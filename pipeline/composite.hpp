@@ -1,0 +1,59 @@
+// Compositing several occupancy grids, each placed by a pose in a common "merged" frame, into one
+// merged grid.
+//
+// The merged grid is axis-aligned in the merged frame (its T_map_grid is a translation only) and
+// covers the bounding box of every input's known cells, transformed into the merged frame, plus
+// one cell of unknown margin on each side. Each merged cell centre is carried back into every
+// input map by the inverse pose and takes that map's nearest cell (the cell containing the
+// point, as GridGeometry::CellOf does). Pulling from the inputs this way, rather than pushing
+// input cells forward, leaves no holes when a map is rotated or has finer cells. Nearest-cell
+// lookup can drop one-cell walls when the merged cells are coarser than an input's: resample such
+// inputs first with ResampleToResolution (core/resample.hpp), which keeps them.
+//
+// Fusion of the per-map states of one merged cell (unknown never votes; a cell no map knows
+// stays kUnknown in every mode):
+//   kLogOdds  L = n_occ * l_occ + n_free * l_free with l_occ = logit(0.7) = +0.847 and
+//             l_free = logit(0.4) = -0.405, the hit/miss probabilities of OctoMap's default
+//             sensor model (Hornung et al., Autonomous Robots 2013). kOccupied if L > 0, kFree if
+//             L < 0. One "occupied" outweighs two "free" but not three: a wall seen by one robot
+//             survives a couple of robots that saw through it (glass, a door since opened).
+//             The threshold is 0: any net evidence decides. An exact tie L = 0 is impossible
+//             (it needs (7/3)^n_occ = (3/2)^n_free); a rounding tie counts as kOccupied
+//             (conservative, as in kVote).
+//   kMax      kOccupied if any map says occupied, else kFree: conservative for navigation.
+//   kVote     majority of the known states; a tie is kOccupied (conservative).
+#pragma once
+
+#include <vector>
+
+#include "core/grid_geometry.hpp"
+#include "core/occupancy_grid.hpp"
+#include "core/pose2.hpp"
+
+namespace fleetmerge {
+
+enum class FusionMode { kLogOdds, kMax, kVote };
+
+// Log-odds evidence of one map's occupied / free cell in FusionMode::kLogOdds.
+inline constexpr double kLogOddsOccupied = 0.84729786038720367;  // log(0.7 / 0.3)
+inline constexpr double kLogOddsFree = -0.40546510810816438;     // log(0.4 / 0.6)
+
+struct CompositeInput {
+  const OccupancyGrid* grid = nullptr;  // not owned; must outlive the call
+  Pose2 T_merged_map;                   // pose of this map's own map frame in the merged frame
+};
+
+// The merged grid at resolution_m. With no known cell in any input it is an empty (0 x 0) grid.
+// Throws fleetmerge::Error unless resolution_m is a finite number > 0 and every grid is set.
+OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolution_m,
+                        FusionMode mode = FusionMode::kLogOdds);
+
+// One input's state at the centre of every cell of `target` (whose map frame is the merged
+// frame): the lookup Composite fuses, also used to colour previews. kUnknown where the centre
+// falls outside the input grid.
+OccupancyGrid SampleOnto(const CompositeInput& input, const GridGeometry& target);
+
+// The fusion rule above for one merged cell, given how many maps see it occupied and free.
+CellState Fuse(int occupied_count, int free_count, FusionMode mode);
+
+}  // namespace fleetmerge
