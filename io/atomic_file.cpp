@@ -1,0 +1,140 @@
+#include "io/atomic_file.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <random>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace fleetmerge {
+namespace fs = std::filesystem;
+namespace {
+
+[[noreturn]] void ThrowWriteError(const fs::path& path, const std::string& what, int error) {
+  throw Error(path.string() + ": " + what + ": " + std::strerror(error));
+}
+
+bool SameFile(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) {
+    const bool same = fs::equivalent(a, b, ec);
+    if (!ec) return same;
+  }
+  const fs::path canonical_a = fs::weakly_canonical(a, ec);
+  if (ec) return a.lexically_normal() == b.lexically_normal();
+  const fs::path canonical_b = fs::weakly_canonical(b, ec);
+  if (ec) return a.lexically_normal() == b.lexically_normal();
+  return canonical_a == canonical_b;
+}
+
+// Owns a POSIX file descriptor; Close() reports errors, the destructor ignores them (it only
+// runs on the failure path, where an error is already being thrown).
+class FileDescriptor {
+ public:
+  explicit FileDescriptor(int fd) : fd_(fd) {}
+  FileDescriptor(const FileDescriptor&) = delete;
+  FileDescriptor& operator=(const FileDescriptor&) = delete;
+  ~FileDescriptor() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  int get() const { return fd_; }
+  int Close() {
+    const int result = ::close(fd_);
+    fd_ = -1;
+    return result;
+  }
+
+ private:
+  int fd_;
+};
+
+std::string RandomSuffix() {
+  std::random_device device;
+  std::ostringstream out;
+  out << std::hex << device() << device();
+  return out.str();
+}
+
+// Creates `.name.tmp.<random>` beside `path` with O_EXCL (never reusing an existing file) and
+// mode 0666 & ~umask, so the final file gets the permissions an ordinary write would give it.
+int CreateTempFile(const fs::path& path, fs::path* temp_path) {
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  for (int attempt = 0;; ++attempt) {
+    *temp_path = folder / ("." + path.filename().string() + ".tmp." + RandomSuffix());
+    const int fd = ::open(temp_path->c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) return fd;
+    if (errno != EEXIST || attempt >= 10) {
+      ThrowWriteError(path, "cannot create temporary file '" + temp_path->string() + "'", errno);
+    }
+  }
+}
+
+void WriteAll(int fd, const std::string& bytes, const fs::path& path) {
+  const char* data = bytes.data();
+  std::size_t remaining = bytes.size();
+  while (remaining > 0) {
+    const ssize_t written = ::write(fd, data, remaining);
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      ThrowWriteError(path, "cannot write temporary file", errno);
+    }
+    data += written;
+    remaining -= static_cast<std::size_t>(written);
+  }
+}
+
+// Makes the rename itself durable. Best effort: some file systems cannot fsync a folder.
+void SyncFolder(const fs::path& path) {
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+void WriteAndRename(int raw_fd, const fs::path& temp_path, const fs::path& path,
+                    const std::string& bytes) {
+  FileDescriptor fd(raw_fd);
+  WriteAll(fd.get(), bytes, path);
+  if (::fsync(fd.get()) != 0) ThrowWriteError(path, "cannot flush temporary file", errno);
+  if (fd.Close() != 0) ThrowWriteError(path, "cannot close temporary file", errno);
+  std::error_code ec;
+  fs::rename(temp_path, path, ec);
+  if (ec) {
+    throw Error(path.string() + ": cannot rename temporary file '" + temp_path.string() +
+                "' over it: " + ec.message());
+  }
+}
+
+}  // namespace
+
+void CheckNotAnInput(const fs::path& path, const std::vector<fs::path>& protected_inputs) {
+  for (const fs::path& input : protected_inputs) {
+    if (!SameFile(path, input)) continue;
+    std::string message = "refusing to overwrite input file " + path.string();
+    if (path != input) message += " (it is the input " + input.string() + ")";
+    throw Error(message);
+  }
+}
+
+void WriteFileAtomically(const fs::path& path, const std::string& bytes,
+                         const std::vector<fs::path>& protected_inputs) {
+  CheckNotAnInput(path, protected_inputs);
+  if (!path.has_filename()) throw Error(path.string() + ": not a file name (ends in a '/')");
+  fs::path temp_path;
+  const int fd = CreateTempFile(path, &temp_path);
+  try {
+    WriteAndRename(fd, temp_path, path, bytes);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(temp_path, ignored);
+    throw;
+  }
+  SyncFolder(path);
+}
+
+}  // namespace fleetmerge

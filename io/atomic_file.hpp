@@ -1,0 +1,25 @@
+// Crash-safe file output: a reader of `path` sees either the old file or the complete new one,
+// never a half-written file. The bytes go to a temporary file in the same folder (so the final
+// rename stays on one file system and is atomic under POSIX), which is fsynced and then renamed
+// over the target.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fleetmerge {
+
+// Throws fleetmerge::Error "refusing to overwrite input file X" when `path` names one of
+// `protected_inputs`: the same file (std::filesystem::equivalent) when both exist, otherwise the
+// same std::filesystem::weakly_canonical path.
+void CheckNotAnInput(const std::filesystem::path& path,
+                     const std::vector<std::filesystem::path>& protected_inputs);
+
+// Writes `bytes` to `path` atomically (temporary file `.name.tmp.<random>` beside it, fsync,
+// rename). On any failure the temporary file is removed and fleetmerge::Error names the path and
+// the reason. The folder must exist. If `path` is a symbolic link, the link itself is replaced.
+void WriteFileAtomically(const std::filesystem::path& path, const std::string& bytes,
+                         const std::vector<std::filesystem::path>& protected_inputs = {});
+
+}  // namespace fleetmerge

@@ -1,0 +1,184 @@
+#include "io/map_image.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <opencv2/imgcodecs.hpp>
+#include <vector>
+
+#include "core/error.hpp"
+#include "io/pnm_header.hpp"
+
+namespace fleetmerge {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr std::uint8_t kOccupiedPixel = 0;
+constexpr std::uint8_t kUnknownPixel = 205;
+constexpr std::uint8_t kFreePixel = 254;
+
+[[noreturn]] void FailImage(const fs::path& image_path, const fs::path& yaml_path,
+                            const std::string& what) {
+  throw Error(image_path.string() + ": " + what + " (the image of map " + yaml_path.string() + ")");
+}
+
+// Explains why cv::imread returned nothing.
+[[noreturn]] void FailUnreadable(const fs::path& image_path, const fs::path& yaml_path) {
+  std::error_code ec;
+  if (fs::file_size(image_path, ec) == 0 && !ec) {
+    FailImage(image_path, yaml_path, "is empty (0 bytes), expected a PGM or PNG image");
+  }
+  const std::optional<PnmHeader> header = ReadPnmHeader(image_path);
+  if (header && (header->width == 0 || header->height == 0)) {
+    FailImage(image_path, yaml_path,
+              "is an empty image (" + std::to_string(header->width) + " x " +
+                  std::to_string(header->height) + " pixels)");
+  }
+  FailImage(image_path, yaml_path, "is not a readable PGM/PNG image");
+}
+
+// Factor that brings samples onto 0..255. OpenCV already rescales 8-bit Netpbm files with a
+// maxval below 255, but returns 16-bit samples raw, so a 16-bit PGM is scaled by its maxval;
+// other 16-bit images span 0..65535 (v / 257).
+double SampleScale(const cv::Mat& raw, const fs::path& image_path) {
+  if (raw.depth() == CV_8U) return 1.0;
+  const std::optional<PnmHeader> header = ReadPnmHeader(image_path);
+  if (header && header->maxval > 255) return 255.0 / header->maxval;
+  return 255.0 / 65535.0;
+}
+
+MapImage Normalise(const cv::Mat& raw, double scale) {
+  cv::Mat scaled;
+  raw.convertTo(scaled, CV_64F, scale);
+  std::vector<cv::Mat> channels;
+  cv::split(scaled, channels);
+  // Channel layouts: grey, grey+alpha, colour (BGR), colour+alpha (BGRA).
+  const bool has_alpha = channels.size() == 2 || channels.size() == 4;
+  const int colour_channels = static_cast<int>(channels.size()) - (has_alpha ? 1 : 0);
+  MapImage image;
+  image.value = channels[0].clone();
+  for (int c = 1; c < colour_channels; ++c) image.value += channels[c];
+  image.value /= colour_channels;  // map_server: mean of the colour channels
+  image.opaque = cv::Mat1b(raw.size(), 1);
+  if (has_alpha) image.opaque.setTo(0, channels.back() == 0);
+  return image;
+}
+
+CellState Threshold(double occupancy, const MapMetadata& metadata) {
+  if (occupancy > metadata.occupied_thresh) return CellState::kOccupied;
+  if (occupancy < metadata.free_thresh) return CellState::kFree;
+  return CellState::kUnknown;
+}
+
+// map_server / Nav2 map_io: grey value v -> occupancy probability -> three states.
+CellState Classify(double value, bool opaque, const MapMetadata& metadata) {
+  if (metadata.mode == MapMode::kRaw) {
+    const double percent = std::round(value);  // raw pixels are occupancy percentages
+    return percent > 100.0 ? CellState::kUnknown : Threshold(percent / 100.0, metadata);
+  }
+  if (!opaque) return CellState::kUnknown;
+  const double occupancy = metadata.negate ? value / 255.0 : (255.0 - value) / 255.0;
+  return Threshold(occupancy, metadata);
+}
+
+std::string LowerExtension(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+}  // namespace
+
+MapImage ReadMapImage(const fs::path& image_path, const fs::path& yaml_path) {
+  cv::Mat raw;
+  try {
+    raw = cv::imread(image_path.string(), cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    FailImage(image_path, yaml_path, "cannot be decoded: " + e.msg);
+  }
+  if (raw.empty()) FailUnreadable(image_path, yaml_path);
+  if (raw.depth() != CV_8U && raw.depth() != CV_16U) {
+    FailImage(image_path, yaml_path,
+              "has unsupported pixel depth (OpenCV depth " + std::to_string(raw.depth()) +
+                  "), expected 8- or 16-bit unsigned samples");
+  }
+  if (raw.channels() < 1 || raw.channels() > 4) {
+    FailImage(image_path, yaml_path,
+              "has " + std::to_string(raw.channels()) +
+                  " channels, expected 1 (grey), 2 (grey+alpha), 3 (RGB) or 4 (RGBA)");
+  }
+  return Normalise(raw, SampleScale(raw, image_path));
+}
+
+cv::Mat1b PixelsToCells(const MapImage& image, const MapMetadata& metadata) {
+  const int rows = image.value.rows;
+  cv::Mat1b cells(rows, image.value.cols);
+  for (int r = 0; r < rows; ++r) {
+    // Image row 0 is the top of the map; grid row 0 is the bottom (+y up): flip.
+    std::uint8_t* cell_row = cells[rows - 1 - r];
+    const double* value_row = image.value[r];
+    const std::uint8_t* opaque_row = image.opaque[r];
+    for (int c = 0; c < image.value.cols; ++c) {
+      const CellState state = Classify(value_row[c], opaque_row[c] != 0, metadata);
+      cell_row[c] = static_cast<std::uint8_t>(state);
+    }
+  }
+  return cells;
+}
+
+cv::Mat1b CellsToPixels(const OccupancyGrid& grid, const fs::path& path_for_errors) {
+  const cv::Mat1b& cells = grid.cells();
+  cv::Mat1b pixels(cells.rows, cells.cols);
+  for (int j = 0; j < cells.rows; ++j) {
+    const std::uint8_t* cell_row = cells[j];
+    std::uint8_t* pixel_row = pixels[cells.rows - 1 - j];  // grid row 0 is the image's bottom
+    for (int i = 0; i < cells.cols; ++i) {
+      switch (static_cast<CellState>(cell_row[i])) {
+        case CellState::kOccupied:
+          pixel_row[i] = kOccupiedPixel;
+          break;
+        case CellState::kFree:
+          pixel_row[i] = kFreePixel;
+          break;
+        case CellState::kUnknown:
+          pixel_row[i] = kUnknownPixel;
+          break;
+        default:
+          throw Error(path_for_errors.string() + ": cell (" + std::to_string(i) + ", " +
+                      std::to_string(j) + ") holds " + std::to_string(cell_row[i]) +
+                      ", expected a CellState (0 unknown, 1 free, 2 occupied)");
+      }
+    }
+  }
+  return pixels;
+}
+
+std::string EncodeImage(const cv::Mat& image, const fs::path& path) {
+  const std::string extension = LowerExtension(path);
+  const auto fail = [&path](const std::string& what) { throw Error(path.string() + ": " + what); };
+  if (extension != ".png" && extension != ".pgm") {
+    fail("unsupported image extension '" + path.extension().string() + "', expected .png or .pgm");
+  }
+  if (image.empty()) fail("cannot save an empty image");
+  if (image.depth() != CV_8U && image.depth() != CV_16U) fail("expected 8- or 16-bit samples");
+  const int channels = image.channels();
+  if (extension == ".pgm" && channels != 1) {
+    fail("a PGM holds 1 channel, got " + std::to_string(channels));
+  }
+  if (channels != 1 && channels != 3 && channels != 4) {
+    fail("a PNG holds 1, 3 or 4 channels, got " + std::to_string(channels));
+  }
+  std::vector<uchar> bytes;
+  const std::vector<int> params = {cv::IMWRITE_PXM_BINARY, 1};
+  try {
+    if (!cv::imencode(extension, image, bytes, extension == ".pgm" ? params : std::vector<int>{})) {
+      fail("OpenCV could not encode the image");
+    }
+  } catch (const cv::Exception& e) {
+    fail("OpenCV could not encode the image: " + e.msg);
+  }
+  return std::string(bytes.begin(), bytes.end());
+}
+
+}  // namespace fleetmerge

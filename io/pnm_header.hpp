@@ -1,0 +1,21 @@
+// Reads the header of a Netpbm file (PBM/PGM/PPM, ASCII or binary). OpenCV decodes the pixels,
+// but it does not expose the header's maxval, which the loader needs: OpenCV rescales 8-bit
+// samples to 0..255 but returns 16-bit samples raw (a PGM with maxval 1023 gives 0..1023).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+namespace fleetmerge {
+
+struct PnmHeader {
+  char kind = '5';  // the digit after 'P': 1..6
+  int width = 0;
+  int height = 0;
+  int maxval = 1;  // 1 for bitmaps (P1, P4)
+};
+
+// The header, or nullopt when the file does not start with a complete Netpbm header.
+std::optional<PnmHeader> ReadPnmHeader(const std::filesystem::path& path);
+
+}  // namespace fleetmerge
