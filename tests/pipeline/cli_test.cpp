@@ -1,0 +1,124 @@
+// The `fleetmerge` executable end to end: exit codes, messages, JSON shape, written files.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tests/support/shared_data.hpp"
+
+namespace fleetmerge {
+namespace {
+
+struct CommandRun {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+CommandRun Fleetmerge(const std::string& args, bool merge_stderr = true) {
+  const std::string command =
+      std::string(FLEETMERGE_EXECUTABLE) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
+  CommandRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (pipe == nullptr) return run;
+  std::array<char, 4096> buffer;
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) run.output += buffer.data();
+  const int status = pclose(pipe);
+  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new std::filesystem::path(testing::MakeTempDir("cli"));
+    ASSERT_EQ(Fleetmerge("example " + (*dir_ / "maps").string()).exit_code, 0);
+  }
+  static std::string A() { return (*dir_ / "maps" / "robot_a.yaml").string(); }
+  static std::string B() { return (*dir_ / "maps" / "robot_b.yaml").string(); }
+  static std::filesystem::path* dir_;
+};
+std::filesystem::path* CliTest::dir_ = nullptr;
+
+TEST_F(CliTest, JsonHasTheDocumentedShapeAndFindsTheTruth) {
+  const CommandRun run = Fleetmerge("pair " + A() + " " + B() + " --json -n 3", false);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const auto j = nlohmann::json::parse(run.output);
+  EXPECT_EQ(j["a"], A());
+  EXPECT_EQ(j["b"], B());
+  ASSERT_GE(j["hypotheses"].size(), 1u);
+  ASSERT_LE(j["hypotheses"].size(), 3u);
+  double previous = 2.0;
+  for (const auto& h : j["hypotheses"]) {
+    for (const char* key : {"x", "y", "yaw", "omega"}) ASSERT_TRUE(h.contains(key)) << key;
+    EXPECT_LE(h["omega"].get<double>(), previous) << "best first";
+    previous = h["omega"];
+  }
+  const YAML::Node truth = YAML::LoadFile((*dir_ / "maps" / "truth.yaml").string())["T_a_b"];
+  const auto& best = j["hypotheses"][0];
+  EXPECT_NEAR(best["x"].get<double>(), truth["x"].template as<double>(), 0.05);
+  EXPECT_NEAR(best["y"].get<double>(), truth["y"].template as<double>(), 0.05);
+  EXPECT_NEAR(
+      std::remainder(best["yaw"].get<double>() - truth["yaw"].template as<double>(), 2 * M_PI), 0.0,
+      0.25 * M_PI / 180);
+}
+
+TEST_F(CliTest, TableAndMergedOutput) {
+  const auto out = *dir_ / "merged";
+  const CommandRun run = Fleetmerge("pair " + A() + " " + B() + " --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("omega"), std::string::npos);
+  EXPECT_NE(run.output.find("merged map: "), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(out / "merged.yaml"));
+  EXPECT_TRUE(std::filesystem::exists(out / "merged.pgm"));
+  EXPECT_TRUE(std::filesystem::exists(out / "merged_preview.png"));
+  const CommandRun again = Fleetmerge("pair " + A() + " " + B() + " --out " + out.string());
+  EXPECT_EQ(again.exit_code, 0) << "re-running into the same folder replaces its results";
+}
+
+TEST_F(CliTest, RefusesToOverwriteAnInputMap) {
+  // An input named merged.yaml in the output folder must survive.
+  const auto folder = *dir_ / "clash";
+  std::filesystem::create_directories(folder);
+  std::filesystem::copy_file(A(), folder / "merged.yaml");
+  std::filesystem::copy_file(*dir_ / "maps" / "robot_a.pgm", folder / "robot_a.pgm");
+  const auto before = std::filesystem::file_size(folder / "merged.yaml");
+  const CommandRun run = Fleetmerge("pair " + (folder / "merged.yaml").string() + " " + B() +
+                                    " --out " + folder.string());
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.output.find("refusing to overwrite"), std::string::npos) << run.output;
+  EXPECT_EQ(std::filesystem::file_size(folder / "merged.yaml"), before);
+}
+
+TEST_F(CliTest, MissingFileNamesThePath) {
+  const CommandRun run = Fleetmerge("pair /nonexistent/a.yaml " + B());
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.output.find("/nonexistent/a.yaml"), std::string::npos) << run.output;
+}
+
+TEST_F(CliTest, BadSamplingOptionIsExplained) {
+  const CommandRun run = Fleetmerge("pair " + A() + " " + B() + " --hough-sampling random:2");
+  EXPECT_NE(run.exit_code, 0);
+  EXPECT_NE(run.output.find("--hough-sampling: expected 'all', 'random:F'"), std::string::npos)
+      << run.output;
+}
+
+TEST_F(CliTest, UsageErrorsExitNonZero) {
+  EXPECT_NE(Fleetmerge("").exit_code, 0);
+  EXPECT_NE(Fleetmerge("pair " + A()).exit_code, 0);
+  EXPECT_NE(Fleetmerge("pair " + A() + " " + B() + " -n 0").exit_code, 0);
+  EXPECT_NE(Fleetmerge("pair " + A() + " " + B() + " --translation sideways").exit_code, 0);
+}
+
+TEST_F(CliTest, PaperMethodIsSelectable) {
+  const CommandRun run =
+      Fleetmerge("pair " + A() + " " + B() + " --translation spectra --no-refine --json", false);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_GE(nlohmann::json::parse(run.output)["hypotheses"].size(), 1u);
+}
+
+}  // namespace
+}  // namespace fleetmerge
