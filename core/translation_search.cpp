@@ -57,6 +57,11 @@ std::vector<TranslationCandidate> SurfacePeaks(const cv::Mat1f& surface, int cou
 
 }  // namespace
 
+int CorrelationPooling(const OccupancyGrid& a, const OccupancyGrid& b,
+                       const TranslationOptions& options) {
+  return PoolingFor(a, std::hypot(double(b.width()), double(b.height())), options.coarse_max_side);
+}
+
 CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, double b_extent_cells,
                                                const TranslationOptions& options)
     : options_(options),

@@ -32,6 +32,11 @@ struct TranslationCandidate {
   double score = 0.0;
 };
 
+// Cells per coarse pixel of the correlation search for b against a: it sets the precision of
+// the translation candidates (about half a pixel), which local refinement must then bridge.
+int CorrelationPooling(const OccupancyGrid& a, const OccupancyGrid& b,
+                       const TranslationOptions& options);
+
 class CorrelationTranslation {
  public:
   // b_extent_cells bounds the side of rotated b's bounding box (b's diagonal).

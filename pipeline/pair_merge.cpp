@@ -15,41 +15,79 @@ void SortByOmega(std::vector<CellHypothesis>& hypotheses) {
 
 // Refines each hypothesis and keeps the refined pose unless omega says it got worse: the
 // alignment cost and omega can disagree when the maps barely overlap.
+Pose2 ScaleTranslation(const Pose2& T, double factor) {
+  return Pose2(T.translation_m() * factor, T.yaw_rad());
+}
+
+// One map pair for refinement: alignment targets (distance fields) on grids `scale` times
+// coarser than a and b (the cell-unit poses scale by 1 / scale), and b's known spans for omega
+// at full resolution.
 struct PairContext {
+  PairContext(const OccupancyGrid& a, const OccupancyGrid& b, int scale, double truncation)
+      : a(a),
+        b(b),
+        scale(scale),
+        target_a(Coarse(a, scale), truncation),
+        target_b(Coarse(b, scale), truncation),
+        b_spans(KnownRowSpans(b)) {}
+  static OccupancyGrid Coarse(const OccupancyGrid& grid, int scale) {
+    return scale == 1 ? grid : ResampleToResolution(grid, grid.geometry().resolution_m() * scale);
+  }
   const OccupancyGrid& a;
   const OccupancyGrid& b;
+  int scale;
   AlignmentTarget target_a, target_b;
   RowSpans b_spans;
 };
 
+// Refines each hypothesis and keeps the refined pose unless omega (at full resolution) says it
+// got worse: the alignment cost and omega can disagree when the maps barely overlap.
 void RefineAll(const PairContext& pair, std::vector<CellHypothesis>& hypotheses,
                const LocalAlignmentOptions& options) {
-  const auto& [a, b, target_a, target_b, b_spans] = pair;
   for (auto& h : hypotheses) {
-    const LocalAlignmentResult r = RefineAlignment(target_a, target_b, h.T_ga_gb, options);
+    const LocalAlignmentResult r = RefineAlignment(
+        pair.target_a, pair.target_b, ScaleTranslation(h.T_ga_gb, 1.0 / pair.scale), options);
     if (!r.converged) continue;
-    const double omega = CountAgreement(a, b, r.T_ga_gb, 1, &b_spans).omega();  // Eq. (1)
-    if (omega >= h.omega - 0.01) h = {r.T_ga_gb, omega};
+    const Pose2 T_ga_gb = ScaleTranslation(r.T_ga_gb, pair.scale);
+    const double omega = CountAgreement(pair.a, pair.b, T_ga_gb, 1, &pair.b_spans).omega();
+    if (omega >= h.omega - 0.01) h = {T_ga_gb, omega};  // Eq. (1)
   }
   SortByOmega(hypotheses);
+}
+
+// The coarse stage's grid scale: its basin (refine_truncation_cells coarse cells) must bridge
+// the translation search's error, quick_basin_pixels of its pooled pixels.
+int CoarseScale(const OccupancyGrid& a, const OccupancyGrid& b, const PairOptions& options) {
+  const TranslationOptions& t = options.hypotheses.translation;
+  if (t.method != TranslationMethod::kCorrelation2D) return 1;
+  const double needed_cells = options.quick_basin_pixels * CorrelationPooling(a, b, t);
+  return std::max(1, static_cast<int>(std::ceil(needed_cells / options.refine_truncation_cells)));
 }
 
 }  // namespace
 
 std::vector<CellHypothesis> RankedCellHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
                                                  const PairOptions& options) {
-  std::vector<CellHypothesis> hypotheses = GenerateHypotheses(a, b, options.hypotheses);
-  if (!options.refine || hypotheses.empty()) return hypotheses;
-  const PairContext pair{a, b, AlignmentTarget(a, options.refine_truncation_cells),
-                         AlignmentTarget(b, options.refine_truncation_cells), KnownRowSpans(b)};
-  RefineAll(pair, hypotheses, options.quick_refine);
-  const std::size_t best = std::min<std::size_t>(options.final_refine_count, hypotheses.size());
-  std::vector<CellHypothesis> head(hypotheses.begin(), hypotheses.begin() + best);
-  RefineAll(pair, head, options.final_refine);
-  std::copy(head.begin(), head.end(), hypotheses.begin());
-  SortByOmega(hypotheses);
-  // Two hypotheses may have converged onto one pose.
-  return RemoveDuplicates(std::move(hypotheses), options.hypotheses);
+  const int wanted = options.hypotheses.max_hypotheses;
+  HypothesisOptions generation = options.hypotheses;
+  if (options.refine) generation.max_hypotheses *= std::max(options.candidates_per_hypothesis, 1);
+  std::vector<CellHypothesis> hypotheses = GenerateHypotheses(a, b, generation);
+  if (options.refine && !hypotheses.empty()) {
+    // Coarse-to-fine: every candidate on coarse grids with a wide basin, then the best at full
+    // resolution.
+    const int scale = CoarseScale(a, b, options);
+    RefineAll(PairContext(a, b, scale, options.refine_truncation_cells), hypotheses,
+              options.quick_refine);
+    const std::size_t best = std::min<std::size_t>(options.final_refine_count, hypotheses.size());
+    std::vector<CellHypothesis> head(hypotheses.begin(), hypotheses.begin() + best);
+    RefineAll(PairContext(a, b, 1, options.refine_truncation_cells), head, options.final_refine);
+    std::copy(head.begin(), head.end(), hypotheses.begin());
+    SortByOmega(hypotheses);
+    // Several candidates may have converged onto one pose.
+    hypotheses = RemoveDuplicates(std::move(hypotheses), options.hypotheses);
+  }
+  if (static_cast<int>(hypotheses.size()) > wanted) hypotheses.resize(std::max(wanted, 0));
+  return hypotheses;
 }
 
 PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairOptions& options) {

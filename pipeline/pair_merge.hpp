@@ -15,8 +15,14 @@ namespace fleetmerge {
 struct PairOptions {
   HypothesisOptions hypotheses;
   bool refine = true;
-  double refine_truncation_cells = 6.0;  // basin of the local alignment
-  // Every hypothesis is refined cheaply (few wall points); the best few again with more.
+  double refine_truncation_cells = 6.0;  // basin of the local alignment, in its grid's cells
+  // The quick stage runs on grids coarse enough that its basin bridges the translation search's
+  // error: this many of that search's pooled pixels (CorrelationPooling).
+  double quick_basin_pixels = 1.5;
+  // Candidates refined per hypothesis returned: a near miss can rank below a wrong hypothesis
+  // before refinement and above all of them after.
+  int candidates_per_hypothesis = 2;
+  // Every candidate is refined cheaply (few wall points); the best few again with more.
   LocalAlignmentOptions quick_refine{300, 15, 1.0};
   LocalAlignmentOptions final_refine{1500, 25, 1.0};
   int final_refine_count = 1;
