@@ -4,94 +4,26 @@
 
 #include <array>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <map>
 #include <sstream>
 
-#include "core/error.hpp"
+#include "io/yaml_errors.hpp"
 
 namespace fleetmerge {
 namespace fs = std::filesystem;
 namespace {
 
-// A top-level key's value and the 1-based line of the key. Errors point at the key's line: for
-// an empty value (`resolution:`) yaml-cpp marks the start of the next line instead.
-struct Entry {
-  YAML::Node value;
-  int line = 0;
-};
-
-// Formats every error as "<yaml path>: line L: key 'k': what".
-class YamlErrors {
- public:
-  explicit YamlErrors(const fs::path& path) : path_(path.string()) {}
-
-  [[noreturn]] void Fail(const std::string& what) const { throw Error(path_ + ": " + what); }
-  [[noreturn]] void Fail(const std::string& key, const Entry& entry,
-                         const std::string& what) const {
-    Fail("line " + std::to_string(entry.line) + ": key '" + key + "': " + what);
-  }
-
- private:
-  std::string path_;
-};
-
-// How a node appears in "got ..." (long scalars are shortened).
-std::string Describe(const YAML::Node& node) {
-  switch (node.Type()) {
-    case YAML::NodeType::Scalar: {
-      const std::string& text = node.Scalar();
-      return "'" + (text.size() > 60 ? text.substr(0, 57) + "..." : text) + "'";
-    }
-    case YAML::NodeType::Sequence:
-      return "a list of " + std::to_string(node.size()) +
-             (node.size() == 1 ? " element" : " elements");
-    case YAML::NodeType::Map:
-      return "a mapping";
-    default:
-      return "an empty value";
-  }
-}
-
-std::string ReadText(const fs::path& path, const YamlErrors& errors) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) errors.Fail("is a folder, expected a map YAML file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) errors.Fail(std::string("cannot open map YAML file: ") + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) errors.Fail(std::string("cannot read map YAML file: ") + std::strerror(errno));
-  return text.str();
-}
+using Entry = YamlEntry;
 
 std::map<std::string, Entry> ParseEntries(const std::string& text, const YamlErrors& errors) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    if (e.mark.is_null()) errors.Fail("malformed YAML: " + e.msg);
-    errors.Fail("line " + std::to_string(e.mark.line + 1) + ", column " +
-                std::to_string(e.mark.column + 1) + ": malformed YAML: " + e.msg);
-  }
+  const YAML::Node root = ParseYamlText(text, errors);
   if (!root.IsMap()) {
     errors.Fail("expected a mapping with keys image, resolution, origin, ..., got " +
                 Describe(root));
   }
-  std::map<std::string, Entry> entries;
-  for (const auto& key_value : root) {
-    if (!key_value.first.IsScalar()) continue;  // not a key map_server reads
-    const Entry entry{key_value.second, key_value.first.Mark().line + 1};
-    const auto [it, inserted] = entries.emplace(key_value.first.Scalar(), entry);
-    if (!inserted) {
-      errors.Fail(it->first, entry,
-                  "appears twice (first at line " + std::to_string(it->second.line) + ")");
-    }
-  }
-  return entries;
+  return MappingEntries(root, "", errors);  // keys that are not scalars: none map_server reads
 }
 
 const Entry* Find(const std::map<std::string, Entry>& entries, const std::string& key) {
@@ -228,7 +160,8 @@ std::string FormatFileName(const std::string& name) {
 
 MapMetadata ReadMapYaml(const fs::path& yaml_path) {
   const YamlErrors errors(yaml_path);
-  const std::map<std::string, Entry> entries = ParseEntries(ReadText(yaml_path, errors), errors);
+  const std::map<std::string, Entry> entries =
+      ParseEntries(ReadYamlFileText(yaml_path, "map YAML file", errors), errors);
   MapMetadata metadata;
   metadata.yaml_path = yaml_path;
   metadata.image_path = ReadImagePath(entries, yaml_path, errors);

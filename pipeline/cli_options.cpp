@@ -2,35 +2,9 @@
 
 #include <memory>
 
-#include "core/error.hpp"
+#include "io/sampling_spec.hpp"
 
 namespace fleetmerge {
-
-SamplingOptions ParseSampling(const std::string& option, const std::string& text) {
-  SamplingOptions s;
-  const auto fail = [&]() -> SamplingOptions {
-    throw Error("option " + option + ": expected 'all', 'random:F' with F in (0, 1] or 'every:K' " +
-                "with K >= 1, got '" + text + "'");
-  };
-  try {
-    std::size_t used = 0;
-    if (text == "all") return s;
-    if (text.rfind("random:", 0) == 0) {
-      s.mode = SamplingMode::kRandomFraction;
-      s.fraction = std::stod(text.substr(7), &used);
-      if (used != text.size() - 7 || !(s.fraction > 0.0 && s.fraction <= 1.0)) return fail();
-      return s;
-    }
-    if (text.rfind("every:", 0) == 0) {
-      s.mode = SamplingMode::kEveryKth;
-      s.step = std::stoi(text.substr(6), &used);
-      if (used != text.size() - 6 || s.step < 1) return fail();
-      return s;
-    }
-  } catch (const std::logic_error&) {  // stod / stoi: not a number, out of range
-  }
-  return fail();
-}
 
 void AddMethodOptions(CLI::App& app, PairOptions& options) {
   // The sampling texts are parsed after CLI11 is done, so a bad one gets our message.

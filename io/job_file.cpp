@@ -1,0 +1,295 @@
+#include "io/job_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <climits>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <utility>
+
+#include "core/error.hpp"
+#include "io/map_yaml.hpp"
+#include "io/sampling_spec.hpp"
+#include "io/yaml_errors.hpp"
+#include "io/yaml_fields.hpp"
+
+namespace fleetmerge {
+namespace fs = std::filesystem;
+namespace {
+
+// clang-format off
+const std::vector<std::string> kJobKeys = {
+    "name", "maps", "output", "reference", "resolution", "threads", "hypotheses_per_pair",
+    "omega_threshold", "min_overlap_cells", "refine", "seed", "hough", "translation",
+    "pose_graph", "fusion"};
+// clang-format on
+
+SamplingOptions ReadSampling(const YamlField& field, const YamlErrors& errors) {
+  const std::optional<SamplingOptions> sampling =
+      field.value.IsScalar() ? ParseSamplingSpec(field.value.Scalar()) : std::nullopt;
+  if (!sampling) FailExpected(field, kSamplingSpecExpected, errors);
+  return *sampling;
+}
+
+// --- Options ---------------------------------------------------------------------------------
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+void ReadHough(const YamlField& field, HypothesisOptions& options, const YamlErrors& errors) {
+  const YamlMapping hough(field, {"n_theta", "rho_step", "sampling"}, "a mapping", errors);
+  if (auto f = hough.Find("n_theta")) options.hough.n_theta = ReadInteger(*f, 8, 3600, errors);
+  if (auto f = hough.Find("rho_step")) {
+    options.hough.rho_step_cells = ReadNumber(*f, 0.1, 100.0, false, errors);
+  }
+  if (auto f = hough.Find("sampling")) options.hough_sampling = ReadSampling(*f, errors);
+}
+
+void ReadTranslation(const YamlField& field, HypothesisOptions& options, const YamlErrors& errors) {
+  const YamlMapping translation(field, {"method", "sampling"}, "a mapping", errors);
+  if (auto f = translation.Find("method")) {
+    options.translation.method =
+        ReadChoice<TranslationMethod>(*f,
+                                      {{"correlation", TranslationMethod::kCorrelation2D},
+                                       {"spectra", TranslationMethod::kXySpectra}},
+                                      errors);
+  }
+  if (auto f = translation.Find("sampling")) options.spectra_sampling = ReadSampling(*f, errors);
+}
+
+void ReadPoseGraph(const YamlField& field, PoseGraphOptions& options, const YamlErrors& errors) {
+  const YamlMapping graph(
+      field, {"loss", "loss_scale", "max_edge_yaw_error_deg", "max_edge_translation_error_m"},
+      "a mapping", errors);
+  if (auto f = graph.Find("loss")) {
+    options.loss = ReadChoice<RobustLoss>(*f,
+                                          {{"none", RobustLoss::kNone},
+                                           {"huber", RobustLoss::kHuber},
+                                           {"cauchy", RobustLoss::kCauchy}},
+                                          errors);
+  }
+  if (auto f = graph.Find("loss_scale")) options.loss_scale = ReadNumber(*f, 0, kInf, true, errors);
+  if (auto f = graph.Find("max_edge_yaw_error_deg")) {
+    options.max_edge_yaw_error_rad = ReadNumber(*f, 0, kInf, true, errors) * M_PI / 180.0;
+  }
+  if (auto f = graph.Find("max_edge_translation_error_m")) {
+    options.max_edge_translation_error_m = ReadNumber(*f, 0, kInf, true, errors);
+  }
+}
+
+void ReadOptions(const YamlMapping& job, FleetOptions& options, const YamlErrors& errors) {
+  HypothesisOptions& hypotheses = options.pair.hypotheses;
+  if (auto f = job.Find("resolution")) options.resolution_m = ReadNumber(*f, 0, kInf, true, errors);
+  if (auto f = job.Find("threads")) options.threads = ReadInteger(*f, 0, INT_MAX, errors);
+  if (auto f = job.Find("hypotheses_per_pair")) {
+    hypotheses.max_hypotheses = ReadInteger(*f, 1, 100, errors);
+  }
+  if (auto f = job.Find("omega_threshold")) {
+    options.omega_threshold = ReadNumber(*f, 0, 1, false, errors);
+  }
+  if (auto f = job.Find("min_overlap_cells")) {
+    options.min_overlap_cells = ReadInteger(*f, 0, INT_MAX, errors);
+  }
+  if (auto f = job.Find("refine")) options.pair.refine = ReadBool(*f, errors);
+  if (auto f = job.Find("hough")) ReadHough(*f, hypotheses, errors);
+  if (auto f = job.Find("translation")) ReadTranslation(*f, hypotheses, errors);
+  if (auto f = job.Find("seed")) {  // as on the command line: Hough seed, spectra seed + 1
+    const auto seed = static_cast<std::uint32_t>(ReadInteger(*f, 0, UINT32_MAX, errors));
+    hypotheses.hough_sampling.seed = seed;
+    hypotheses.spectra_sampling.seed = seed + 1;
+  }
+  if (auto f = job.Find("pose_graph")) ReadPoseGraph(*f, options.pose_graph, errors);
+  if (auto f = job.Find("fusion")) {
+    options.fusion = ReadChoice<FusionMode>(*f,
+                                            {{"log_odds", FusionMode::kLogOdds},
+                                             {"max", FusionMode::kMax},
+                                             {"vote", FusionMode::kVote}},
+                                            errors);
+  }
+}
+
+// --- Maps and jobs ---------------------------------------------------------------------------
+
+fs::path Resolve(const fs::path& folder, const fs::path& source) {
+  return source.is_absolute() ? source : folder / source;
+}
+
+// The path two entries naming one file share (symbolic links, "..", a trailing "/" resolved).
+fs::path Canonical(const fs::path& path) {
+  std::error_code ec;
+  fs::path canonical = fs::weakly_canonical(path, ec);
+  if (ec) canonical = fs::absolute(path).lexically_normal();
+  return canonical.has_filename() ? canonical : canonical.parent_path();
+}
+
+// One entry of `maps`, with where its name came from (for errors).
+struct ListedMap {
+  JobMap map;
+  fs::path canonical;
+  YamlField entry;
+  YamlField name;  // the entry itself when the name is the file's
+};
+
+ListedMap ReadMap(const YamlField& entry, const fs::path& folder, const YamlErrors& errors) {
+  const std::string expected = "a map YAML path, or a mapping {path, name}";
+  ListedMap listed{{}, {}, entry, entry};
+  std::string source;
+  if (entry.value.IsMap()) {
+    const YamlMapping map(entry, {"path", "name"}, expected, errors);
+    source = ReadString(map.Require("path", "a map YAML path"), "a map YAML path", errors);
+    if (auto f = map.Find("name")) {
+      listed.map.name = ReadString(*f, "a map name", errors);
+      listed.name = *f;
+    }
+  } else {
+    source = ReadString(entry, expected, errors);
+  }
+  listed.map.source = source;
+  listed.map.path = Resolve(folder, source);
+  listed.canonical = Canonical(listed.map.path);
+  if (listed.map.name.empty()) listed.map.name = listed.map.source.stem().string();
+  try {
+    ReadMapYaml(listed.map.path);  // the metadata only: a bad map stops the file before work
+  } catch (const Error& e) {
+    errors.Fail(entry.key, entry.line, e.what());
+  }
+  return listed;
+}
+
+void CheckDistinctMaps(const std::vector<ListedMap>& maps, const YamlErrors& errors) {
+  for (std::size_t j = 1; j < maps.size(); ++j) {
+    for (std::size_t i = 0; i < j; ++i) {
+      const std::string first =
+          maps[i].entry.key + " (line " + std::to_string(maps[i].entry.line) + ")";
+      if (maps[j].map.name == maps[i].map.name) {
+        errors.Fail(maps[j].name.key, maps[j].name.line,
+                    "map name '" + maps[j].map.name + "' is also the name of " + first +
+                        "; give each map a unique 'name'");
+      }
+      if (maps[j].canonical == maps[i].canonical) {
+        errors.Fail(maps[j].entry.key, maps[j].entry.line,
+                    "'" + maps[j].map.source.string() + "' is the same file as " + first);
+      }
+    }
+  }
+}
+
+std::vector<JobMap> ReadMaps(const YamlField& field, const fs::path& folder,
+                             const YamlErrors& errors) {
+  if (!field.value.IsSequence() || field.value.size() == 0) {
+    FailExpected(field, "a non-empty list of map YAML files", errors);
+  }
+  std::vector<ListedMap> listed;
+  for (std::size_t i = 0; i < field.value.size(); ++i) {
+    listed.push_back(ReadMap(ListElement(field, i), folder, errors));
+  }
+  CheckDistinctMaps(listed, errors);
+  std::vector<JobMap> maps;
+  for (ListedMap& entry : listed) maps.push_back(std::move(entry.map));
+  return maps;
+}
+
+std::string ReadReference(const YamlMapping& job, const std::vector<JobMap>& maps,
+                          const YamlErrors& errors) {
+  const std::optional<YamlField> field = job.Find("reference");
+  if (!field) return maps.front().name;
+  std::vector<std::string> names;
+  for (const JobMap& map : maps) names.push_back("'" + map.name + "'");
+  const std::string expected = "the name of one of the job's maps (" + JoinWords(names) + ")";
+  const std::string reference = ReadString(*field, expected, errors);
+  for (const JobMap& map : maps) {
+    if (map.name == reference) return reference;
+  }
+  FailExpected(*field, expected, errors);
+}
+
+// A job and where its name and output came from (for the checks across jobs).
+struct ListedJob {
+  Job job;
+  fs::path canonical_output;
+  YamlField name;  // the job's mapping when the name is the default
+  YamlField output;
+};
+
+ListedJob ReadJob(const YamlField& field, int number, const fs::path& job_file,
+                  const YamlErrors& errors) {
+  const YamlMapping job(field, kJobKeys, "a job: a mapping with 'maps' and 'output'", errors);
+  const fs::path folder = job_file.parent_path();
+  ListedJob listed{{}, {}, field, {}};
+  Job& result = listed.job;
+  result.job_file = job_file;
+  result.name = "job " + std::to_string(number);
+  if (auto f = job.Find("name")) {
+    result.name = ReadString(*f, "a job name", errors);
+    listed.name = *f;
+  }
+  result.maps = ReadMaps(job.Require("maps", "a non-empty list of map YAML files"), folder, errors);
+  listed.output = job.Require("output", "an output folder");
+  result.output_dir = Resolve(folder, ReadString(listed.output, "an output folder", errors));
+  listed.canonical_output = Canonical(result.output_dir);
+  std::error_code ec;
+  if (fs::exists(result.output_dir, ec) && !fs::is_directory(result.output_dir, ec)) {
+    errors.Fail(listed.output.key, listed.output.line,
+                "'" + result.output_dir.string() + "' exists and is not a folder");
+  }
+  result.reference = ReadReference(job, result.maps, errors);
+  ReadOptions(job, result.options, errors);
+  return listed;
+}
+
+void CheckDistinctJobs(const std::vector<ListedJob>& jobs, const YamlErrors& errors) {
+  for (std::size_t j = 1; j < jobs.size(); ++j) {
+    for (std::size_t i = 0; i < j; ++i) {
+      const std::string first =
+          "job '" + jobs[i].job.name + "' (line " + std::to_string(jobs[i].name.line) + ")";
+      if (jobs[j].job.name == jobs[i].job.name) {
+        errors.Fail(jobs[j].name.key, jobs[j].name.line,
+                    "job name '" + jobs[j].job.name + "' is also the name of " + first);
+      }
+      if (jobs[j].canonical_output == jobs[i].canonical_output) {
+        errors.Fail(jobs[j].output.key, jobs[j].output.line,
+                    "'" + jobs[j].job.output_dir.string() + "' is also the output folder of " +
+                        first + "; each job needs its own");
+      }
+    }
+  }
+}
+
+// The jobs of the file: the root itself (one job) or the elements of `jobs`.
+std::vector<ListedJob> ReadJobs(const YAML::Node& root, const fs::path& yaml_path,
+                                const YamlErrors& errors) {
+  const YamlField top{root, "", root.Mark().is_null() ? 1 : root.Mark().line + 1};
+  if (!root.IsMap()) {
+    errors.Fail(
+        "expected a job (a mapping with 'maps' and 'output') or 'jobs:' with a list of "
+        "jobs, got " +
+        Describe(root));
+  }
+  if (!root["jobs"]) return {ReadJob(top, 1, yaml_path, errors)};
+  const YamlMapping file(top, {"jobs"}, "a mapping", errors);
+  const YamlField list = file.Require("jobs", "a list of jobs");
+  if (!list.value.IsSequence() || list.value.size() == 0) {
+    FailExpected(list, "a non-empty list of jobs", errors);
+  }
+  std::vector<ListedJob> jobs;
+  for (std::size_t i = 0; i < list.value.size(); ++i) {
+    jobs.push_back(ReadJob(ListElement(list, i), static_cast<int>(i) + 1, yaml_path, errors));
+  }
+  return jobs;
+}
+
+}  // namespace
+
+std::vector<Job> LoadJobFile(const fs::path& yaml_path) {
+  const YamlErrors errors(yaml_path);
+  const YAML::Node root = ParseYamlText(ReadYamlFileText(yaml_path, "job file", errors), errors);
+  std::vector<ListedJob> listed = ReadJobs(root, yaml_path, errors);
+  CheckDistinctJobs(listed, errors);
+  std::vector<Job> jobs;
+  for (ListedJob& entry : listed) jobs.push_back(std::move(entry.job));
+  return jobs;
+}
+
+}  // namespace fleetmerge
