@@ -14,6 +14,10 @@ void AddMethodOptions(CLI::App& app, PairOptions& options) {
   app.add_option("--n-theta", options.hypotheses.hough.n_theta, "Hough theta bins over 180 degrees")
       ->check(CLI::Range(8, 3600))
       ->capture_default_str();
+  app.add_option("--rho-step", options.hypotheses.hough.rho_step_cells,
+                 "Hough rho bin height in cells (n_rho = map extent / rho step)")
+      ->check(CLI::Range(0.1, 100.0))
+      ->capture_default_str();
   app.add_option("--hough-sampling", *hough,
                  "points for the Hough transform: all | random:F | every:K (Section III-D)")
       ->capture_default_str();

@@ -8,7 +8,7 @@
 
 namespace fleetmerge {
 
-// --n-theta, --hough-sampling, --spectra-sampling, --translation, --no-refine, --seed.
+// --n-theta, --rho-step, --hough-sampling, --spectra-sampling, --translation, --no-refine, --seed.
 void AddMethodOptions(CLI::App& app, PairOptions& options);
 
 }  // namespace fleetmerge

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <random>
+#include <vector>
 
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
@@ -26,6 +27,25 @@ struct GroundTruthPair {
 // axis-aligned grid in that frame (nearest-cell resampling).
 GroundTruthPair CutPair(const OccupancyGrid& building, double yaw_rad, std::mt19937& rng,
                         const CutPairOptions& options = {});
+
+// The part re-framed: its map frame moves to T_map_new (given in the part's map frame), on an
+// axis-aligned grid in that frame covering the part (nearest-cell resampling).
+OccupancyGrid Reframe(const OccupancyGrid& part, const Pose2& T_map_new);
+
+struct CutFleetOptions {
+  double overlap = 0.3;        // each tile grows by this share of a tile on every side
+  double max_offset_m = 20.0;  // |translation| of each map frame, per axis
+};
+
+struct GroundTruthFleet {
+  std::vector<OccupancyGrid> maps;    // one per robot, each in a random frame of its own
+  std::vector<Pose2> T_building_map;  // truth: each map's frame in the building's frame
+};
+
+// K robots' maps: overlapping tiles of `building`'s known box (a near-square grid of tiles),
+// each re-framed by a random rotation (any angle) and translation.
+GroundTruthFleet CutFleet(const OccupancyGrid& building, int robots, std::mt19937& rng,
+                          const CutFleetOptions& options = {});
 
 // Frame-independent pose error of an estimate of T_a_b: yaw error, and the mean displacement
 // of b's occupied cells between the estimate and the truth, in cells.

@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "pipeline/cli_options.hpp"
 #include "pipeline/example_command.hpp"
+#include "pipeline/merge_command.hpp"
 #include "pipeline/pair_command.hpp"
 
 int main(int argc, char** argv) {
@@ -28,6 +29,23 @@ int main(int argc, char** argv) {
                        "also write the merged map of the best hypothesis into this folder");
   AddMethodOptions(*pair_app, pair.options);
 
+  MergeCommand merge;
+  CLI::App* merge_app =
+      app.add_subcommand("merge", "Merge the maps of a fleet: job files, or maps with --out DIR");
+  merge_app->add_option("inputs", merge.inputs, "job files (YAML), or map YAMLs with --out")
+      ->required();
+  merge_app->add_option("--out", merge.out_dir, "treat the inputs as maps of one job, output here");
+  merge_app->add_option("--reference", merge.reference, "with --out: the reference map's name");
+  merge_app->add_option("--threads", merge.options.threads, "threads (0: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  merge_app
+      ->add_option("--omega-threshold", merge.options.omega_threshold,
+                   "best omega a pair needs to become an edge")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  merge_app->add_flag("--quiet", merge.quiet, "no progress output");
+  AddMethodOptions(*merge_app, merge.options.pair);
+
   ExampleCommand example;
   CLI::App* example_app = app.add_subcommand(
       "example", "Write two overlapping robot maps of a synthetic office with the true answer");
@@ -38,8 +56,12 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  } catch (const Error& e) {  // thrown by option callbacks (e.g. a bad sampling spec)
+    std::cerr << "fleetmerge: error: " << e.what() << "\n";
+    return 2;
   }
   try {
+    if (merge_app->parsed()) return RunMergeCommand(merge, std::cout, std::cerr);
     if (pair_app->parsed()) return RunPairCommand(pair, std::cout);
     if (example_app->parsed()) return RunExampleCommand(example, std::cout);
   } catch (const Error& e) {

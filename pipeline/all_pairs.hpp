@@ -1,0 +1,35 @@
+// Stage 1 of fleet merging: pairwise hypotheses for every pair of maps, on a thread pool. Each
+// pair is computed independently and deterministically (sampling is seeded), and stored at its
+// own index, so the result does not depend on the number of threads.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/occupancy_grid.hpp"
+#include "pipeline/pair_merge.hpp"
+
+namespace fleetmerge {
+
+// Called after each finished unit of work of a stage (from the worker threads, serialised).
+using ProgressFn = std::function<void(const std::string& stage, int done, int total)>;
+
+struct PairOutcome {
+  int a = 0, b = 0;                        // map indices, a < b
+  std::vector<PairHypothesis> hypotheses;  // pose of b's map frame in a's, best first
+  std::int64_t overlap_cells = 0;          // cells known in both under the best hypothesis
+  double wall_agreement = 0.0;             // core/wall_agreement.hpp, of the best hypothesis
+  bool accepted = false;                   // an edge of the final pose graph
+  int edge_hypothesis = -1;                // the hypothesis the edge uses (0 = the best)
+  std::string note;                        // why it was rejected or replaced
+  double best_omega() const { return hypotheses.empty() ? 0.0 : hypotheses.front().omega; }
+};
+
+// All pairs (a < b, in row order) of maps that share one resolution. threads <= 0: all cores.
+std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
+                                         const PairOptions& options, int threads,
+                                         const ProgressFn& progress = {});
+
+}  // namespace fleetmerge

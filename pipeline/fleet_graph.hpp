@@ -1,0 +1,29 @@
+// Stage 2 of fleet merging: from pairwise outcomes to consistent map poses.
+//
+// Accepted pairs are edges weighted by omega. Per connected component: initial poses from a
+// maximum-omega spanning tree, one Ceres problem over all poses (refine/pose_graph.hpp), then
+// the edge that most disagrees with its cycles is taken out; if one of that pair's other
+// hypotheses agrees with the poses solved without it, that hypothesis replaces it, else the pair
+// is rejected; repeat until every edge agrees. A bridge edge has no cycle to check it.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "pipeline/all_pairs.hpp"
+#include "refine/pose_graph.hpp"
+
+namespace fleetmerge {
+
+struct FleetGraph {
+  std::vector<int> component_of;         // per map, components numbered in map order
+  std::vector<int> component_reference;  // per component: the map with the identity pose
+  std::vector<Pose2> T_component_map;    // per map: its frame in its component's frame
+};
+
+// Marks pairs accepted (in `pairs`, with edge_hypothesis and notes) and returns the poses.
+// `reference` is the job's reference map; other components use their first map.
+FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
+                           const PoseGraphOptions& options);
+
+}  // namespace fleetmerge

@@ -1,0 +1,96 @@
+#include "pipeline/fleet_merge.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "core/error.hpp"
+#include "core/resample.hpp"
+#include "pipeline/composite.hpp"
+#include "pipeline/fleet_graph.hpp"
+
+namespace fleetmerge {
+namespace {
+
+double MillisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+std::vector<OccupancyGrid> AtOneResolution(const std::vector<const OccupancyGrid*>& maps,
+                                           double resolution_m) {
+  std::vector<OccupancyGrid> out;
+  for (const OccupancyGrid* m : maps) {
+    const bool same = std::abs(m->geometry().resolution_m() - resolution_m) <= 1e-9 * resolution_m;
+    out.push_back(same ? *m : ResampleToResolution(*m, resolution_m));
+  }
+  return out;
+}
+
+void AcceptByThreshold(std::vector<PairOutcome>& pairs, const FleetOptions& options) {
+  for (PairOutcome& p : pairs) {
+    p.accepted = p.best_omega() >= options.omega_threshold &&
+                 p.overlap_cells >= options.min_overlap_cells &&
+                 p.wall_agreement >= options.min_wall_agreement;
+    p.edge_hypothesis = p.accepted ? 0 : -1;
+    if (!p.accepted) {
+      p.note = p.hypotheses.empty() ? "no hypothesis (a map has no occupied cell)"
+               : p.best_omega() < options.omega_threshold ? "best omega below the threshold"
+               : p.overlap_cells < options.min_overlap_cells
+                   ? "overlap below min_overlap_cells"
+                   : "wall agreement below min_wall_agreement";
+    }
+  }
+}
+
+}  // namespace
+
+FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
+                       const FleetOptions& options, const ProgressFn& progress) {
+  if (maps.empty()) throw Error("a fleet-merging job needs at least one map");
+  if (reference < 0 || reference >= static_cast<int>(maps.size())) {
+    throw Error("the reference map index is out of range");
+  }
+  FleetResult result;
+  result.resolution_m = options.resolution_m;
+  if (!(result.resolution_m > 0.0)) {  // default: the finest of the maps
+    result.resolution_m = maps.front()->geometry().resolution_m();
+    for (const auto* m : maps) {
+      result.resolution_m = std::min(result.resolution_m, m->geometry().resolution_m());
+    }
+  }
+  result.maps = AtOneResolution(maps, result.resolution_m);
+
+  auto start = std::chrono::steady_clock::now();
+  result.pairs = ComputeAllPairs(result.maps, options.pair, options.threads, progress);
+  result.timing.pairs_ms = MillisecondsSince(start);
+
+  start = std::chrono::steady_clock::now();
+  AcceptByThreshold(result.pairs, options);
+  const FleetGraph graph =
+      SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph);
+  result.component_of = graph.component_of;
+  result.T_component_map = graph.T_component_map;
+  result.timing.refine_ms = MillisecondsSince(start);
+  if (progress) progress("refine", 1, 1);
+
+  start = std::chrono::steady_clock::now();
+  result.components.resize(graph.component_reference.size());
+  for (std::size_t c = 0; c < result.components.size(); ++c) {
+    FleetComponent& component = result.components[c];
+    component.reference = graph.component_reference[c];
+    std::vector<CompositeInput> inputs;
+    for (int m = 0; m < static_cast<int>(maps.size()); ++m) {
+      if (graph.component_of[m] != static_cast<int>(c)) continue;
+      component.maps.push_back(m);
+      inputs.push_back({&result.maps[m], result.T_component_map[m]});
+    }
+    if (inputs.size() >= 2 || maps.size() == 1) {
+      component.merged = Composite(inputs, result.resolution_m, options.fusion);
+    }
+    if (progress) progress("composite", static_cast<int>(c) + 1, int(result.components.size()));
+  }
+  result.timing.composite_ms = MillisecondsSince(start);
+  return result;
+}
+
+}  // namespace fleetmerge

@@ -1,0 +1,42 @@
+// The fleet-merging job on in-memory maps (the product's main job): every pair of maps gets
+// Hough hypotheses (pipeline/all_pairs.hpp); pairs with a high best omega and enough overlap
+// become omega-weighted pose-graph edges, solved per connected component with cycle checks
+// (pipeline/fleet_graph.hpp); each component of two or more maps is composited into one map.
+// A map that overlaps no other stays unmerged: never forced in, never dropped.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/occupancy_grid.hpp"
+#include "pipeline/all_pairs.hpp"
+#include "pipeline/fleet_options.hpp"
+
+namespace fleetmerge {
+
+struct FleetComponent {
+  std::vector<int> maps;                // map indices, in job order
+  int reference = 0;                    // the map whose frame is the component's merged frame
+  std::optional<OccupancyGrid> merged;  // components of two or more maps (or a one-map job)
+};
+
+struct FleetTiming {
+  double pairs_ms = 0.0, refine_ms = 0.0, composite_ms = 0.0;
+};
+
+struct FleetResult {
+  double resolution_m = 0.0;           // the maps were compared and composited at this
+  std::vector<OccupancyGrid> maps;     // the inputs at resolution_m
+  std::vector<int> component_of;       // per map
+  std::vector<Pose2> T_component_map;  // per map: its map frame in its component's frame
+  std::vector<FleetComponent> components;
+  std::vector<PairOutcome> pairs;  // every pair a < b
+  FleetTiming timing;
+};
+
+// `reference` indexes `maps`. Throws fleetmerge::Error for an empty list or a bad reference.
+FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
+                       const FleetOptions& options, const ProgressFn& progress = {});
+
+}  // namespace fleetmerge

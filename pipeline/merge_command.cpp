@@ -1,0 +1,139 @@
+#include "pipeline/merge_command.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ostream>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/job_file.hpp"
+#include "io/map_io.hpp"
+#include "pipeline/fleet_merge.hpp"
+#include "pipeline/preview.hpp"
+#include "pipeline/report_json.hpp"
+
+namespace fleetmerge {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double MillisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// A bar redrawn in place on a terminal; otherwise a line per stage at 0, 25, 50, 75, 100 %.
+ProgressFn MakeProgress(const std::string& job, bool quiet, std::ostream& err) {
+  if (quiet) return {};
+  const bool terminal = isatty(fileno(stderr)) != 0;
+  return [job, terminal, &err](const std::string& stage, int done, int total) {
+    if (terminal) {
+      const int width = 30, filled = total > 0 ? width * done / total : width;
+      err << "\r" << job << " " << stage << " [" << std::string(filled, '#')
+          << std::string(width - filled, ' ') << "] " << done << "/" << total
+          << (done == total ? "\n" : "") << std::flush;
+    } else if (done == total || (total >= 4 && done % ((total + 3) / 4) == 0)) {
+      err << job << ": " << stage << " " << done << "/" << total << "\n" << std::flush;
+    }
+  };
+}
+
+std::vector<std::string> WriteOutputs(const Job& job, const FleetResult& result,
+                                      const std::vector<std::filesystem::path>& protect) {
+  std::filesystem::create_directories(job.output_dir);
+  std::vector<std::string> files(result.components.size());
+  for (std::size_t c = 0; c < result.components.size(); ++c) {
+    const FleetComponent& component = result.components[c];
+    if (!component.merged) continue;
+    files[c] = "merged_" + std::to_string(c) + ".yaml";
+    SaveMap(*component.merged, job.output_dir / files[c], protect);
+    std::vector<CompositeInput> inputs;
+    for (int m : component.maps) inputs.push_back({&result.maps[m], result.T_component_map[m]});
+    SaveImage(ColourPreview(inputs, *component.merged),
+              job.output_dir / ("merged_" + std::to_string(c) + "_preview.png"), protect);
+  }
+  return files;
+}
+
+void RunJob(const Job& job, bool quiet, std::ostream& out, std::ostream& err) {
+  const auto start = Clock::now();
+  JobTiming timing;
+  std::vector<LoadedMap> loaded;
+  std::vector<std::filesystem::path> protect = {job.job_file};
+  int reference = 0;
+  for (std::size_t m = 0; m < job.maps.size(); ++m) {
+    loaded.push_back(LoadMap(job.maps[m].path));
+    protect.push_back(loaded.back().metadata.yaml_path);
+    protect.push_back(loaded.back().metadata.image_path);
+    if (job.maps[m].name == job.reference) reference = static_cast<int>(m);
+  }
+  timing.load_ms = MillisecondsSince(start);
+  std::vector<const OccupancyGrid*> grids;
+  for (const auto& l : loaded) grids.push_back(&l.grid);
+  const FleetResult result =
+      MergeFleet(grids, reference, job.options, MakeProgress(job.name, quiet, err));
+
+  const auto write_start = Clock::now();
+  const std::vector<std::string> files = WriteOutputs(job, result, protect);
+  timing.write_ms = MillisecondsSince(write_start);
+  timing.total_ms = MillisecondsSince(start);
+  const nlohmann::json report = MakeReport(job, result, files, timing);
+  WriteFileAtomically(job.output_dir / "report.json", report.dump(2) + "\n", protect);
+
+  int merged = 0;
+  for (const auto& c : result.components) merged += c.merged.has_value();
+  out << job.name << ": " << job.maps.size() << " maps, " << result.components.size()
+      << " component(s), " << merged
+      << " merged map(s); report: " << (job.output_dir / "report.json").string() << " ("
+      << static_cast<int>(timing.total_ms) << " ms)\n";
+}
+
+}  // namespace
+
+Job JobFromMapList(const MergeCommand& command) {
+  Job job;
+  job.name = "merge";
+  job.output_dir = *command.out_dir;
+  job.options = command.options;
+  for (const auto& path : command.inputs) {
+    job.maps.push_back({path.stem().string(), path, path});
+  }
+  job.reference = command.reference.value_or(job.maps.empty() ? "" : job.maps.front().name);
+  bool found = false;
+  for (const auto& m : job.maps) found = found || m.name == job.reference;
+  if (!found) throw Error("--reference '" + job.reference + "' is not one of the maps' names");
+  return job;
+}
+
+int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::ostream& err) {
+  int failed = 0;
+  for (const Job& job : jobs) {
+    try {
+      RunJob(job, quiet, out, err);
+    } catch (const Error& e) {
+      ++failed;
+      err << "fleetmerge: job '" << job.name << "' failed: " << e.what() << "\n";
+    } catch (const std::filesystem::filesystem_error& e) {
+      ++failed;
+      err << "fleetmerge: job '" << job.name << "' failed: " << e.what() << "\n";
+    }
+  }
+  if (failed > 0) err << "fleetmerge: " << failed << " of " << jobs.size() << " job(s) failed\n";
+  return failed > 0 ? 1 : 0;
+}
+
+int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream& err) {
+  std::vector<Job> jobs;
+  if (command.out_dir) {
+    jobs.push_back(JobFromMapList(command));
+  } else {
+    // Every job file is validated before any job runs.
+    for (const auto& file : command.inputs) {
+      for (Job& job : LoadJobFile(file)) jobs.push_back(std::move(job));
+    }
+  }
+  return RunJobs(jobs, command.quiet, out, err);
+}
+
+}  // namespace fleetmerge

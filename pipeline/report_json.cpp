@@ -1,0 +1,60 @@
+#include "pipeline/report_json.hpp"
+
+namespace fleetmerge {
+namespace {
+
+nlohmann::json PoseJson(const Pose2& T) {
+  return {{"x", T.x_m()}, {"y", T.y_m()}, {"yaw", T.yaw_rad()}};
+}
+
+nlohmann::json PairJson(const Job& job, const PairOutcome& p) {
+  nlohmann::json hypotheses = nlohmann::json::array();
+  for (const auto& h : p.hypotheses) {
+    nlohmann::json j = PoseJson(h.T_a_b);
+    j["omega"] = h.omega;
+    hypotheses.push_back(j);
+  }
+  nlohmann::json j = {{"a", job.maps[p.a].name},           {"b", job.maps[p.b].name},
+                      {"omega", p.best_omega()},           {"accepted", p.accepted},
+                      {"hypotheses", hypotheses},          {"overlap_cells", p.overlap_cells},
+                      {"wall_agreement", p.wall_agreement}};
+  if (p.accepted) j["edge_hypothesis"] = p.edge_hypothesis;
+  if (!p.note.empty()) j["note"] = p.note;
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json MakeReport(const Job& job, const FleetResult& result,
+                          const std::vector<std::string>& merged_files, const JobTiming& timing) {
+  nlohmann::json report;
+  report["job"] = job.name;
+  report["resolution"] = result.resolution_m;
+  report["maps"] = nlohmann::json::array();
+  for (std::size_t m = 0; m < job.maps.size(); ++m) {
+    report["maps"].push_back({{"name", job.maps[m].name},
+                              {"source", job.maps[m].source.generic_string()},
+                              {"component", result.component_of[m]},
+                              {"pose", PoseJson(result.T_component_map[m])}});
+  }
+  report["components"] = nlohmann::json::array();
+  for (std::size_t c = 0; c < result.components.size(); ++c) {
+    nlohmann::json names = nlohmann::json::array();
+    for (int m : result.components[c].maps) names.push_back(job.maps[m].name);
+    nlohmann::json j = {
+        {"id", c}, {"maps", names}, {"reference", job.maps[result.components[c].reference].name}};
+    if (!merged_files[c].empty()) j["merged_map"] = merged_files[c];
+    report["components"].push_back(j);
+  }
+  report["pairs"] = nlohmann::json::array();
+  for (const auto& p : result.pairs) report["pairs"].push_back(PairJson(job, p));
+  report["timing_ms"] = {{"load", timing.load_ms},
+                         {"pairs", result.timing.pairs_ms},
+                         {"refine", result.timing.refine_ms},
+                         {"composite", result.timing.composite_ms},
+                         {"write", timing.write_ms},
+                         {"total", timing.total_ms}};
+  return report;
+}
+
+}  // namespace fleetmerge

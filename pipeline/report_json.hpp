@@ -1,0 +1,27 @@
+// report.json of a fleet-merging job. Other tools read it: the names below are fixed
+// (fields may be added):
+//   maps[]: name, source, component, pose {x, y, yaw} (the map frame in its component's merged
+//           frame; the component's reference map has the identity)
+//   components[]: id, maps (names), merged_map (file name; absent for an unmerged map)
+//   pairs[]: a, b, omega (best), accepted, hypotheses [{x, y, yaw, omega}] (b's frame in a's)
+//   timing_ms: load, pairs, refine, composite, total
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "pipeline/fleet_merge.hpp"
+#include "pipeline/job.hpp"
+
+namespace fleetmerge {
+
+struct JobTiming {
+  double load_ms = 0.0, write_ms = 0.0, total_ms = 0.0;
+};
+
+// merged_files[c]: the merged map's file name of component c, empty when it has none.
+nlohmann::json MakeReport(const Job& job, const FleetResult& result,
+                          const std::vector<std::string>& merged_files, const JobTiming& timing);
+
+}  // namespace fleetmerge

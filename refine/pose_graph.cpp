@@ -1,0 +1,120 @@
+#include "refine/pose_graph.hpp"
+
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <queue>
+
+namespace fleetmerge {
+namespace {
+
+template <typename T>
+T WrapAngleT(const T& angle) {
+  // The same wrap as Ceres' pose_graph_2d NormalizeAngle, usable on Jets.
+  const T two_pi(2.0 * M_PI);
+  return angle - two_pi * ceres::floor((angle + T(M_PI)) / two_pi);
+}
+
+struct RelativePoseResidual {
+  RelativePoseResidual(const PoseGraphEdge& edge, const PoseGraphOptions& options)
+      : p_ab(edge.T_a_b.translation_m()),
+        yaw_ab(edge.T_a_b.yaw_rad()),
+        w_t(std::sqrt(edge.omega) / options.translation_sigma_m),
+        w_yaw(std::sqrt(edge.omega) / options.yaw_sigma_rad) {}
+
+  // pose = (x_m, y_m, yaw_rad) of T_ref_node.
+  template <typename T>
+  bool operator()(const T* a, const T* b, T* r) const {
+    const T c = ceres::cos(a[2]), s = ceres::sin(a[2]);
+    const T dx = b[0] - a[0], dy = b[1] - a[1];
+    r[0] = T(w_t) * (c * dx + s * dy - T(p_ab.x()));
+    r[1] = T(w_t) * (-s * dx + c * dy - T(p_ab.y()));
+    r[2] = T(w_yaw) * WrapAngleT(b[2] - a[2] - T(yaw_ab));
+    return true;
+  }
+
+  Eigen::Vector2d p_ab;
+  double yaw_ab, w_t, w_yaw;
+};
+
+ceres::LossFunction* MakeLoss(const PoseGraphOptions& options) {
+  switch (options.loss) {
+    case RobustLoss::kHuber:
+      return new ceres::HuberLoss(options.loss_scale);
+    case RobustLoss::kCauchy:
+      return new ceres::CauchyLoss(options.loss_scale);
+    case RobustLoss::kNone:
+      break;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::optional<Pose2>> SpanningTreePoses(int node_count,
+                                                    const std::vector<PoseGraphEdge>& edges,
+                                                    int reference) {
+  // Prim's algorithm from the reference, always taking the highest-omega edge out of the tree.
+  std::vector<std::optional<Pose2>> poses(node_count);
+  poses[reference] = Pose2();
+  using Candidate = std::pair<double, int>;  // (omega, edge index)
+  std::priority_queue<Candidate> frontier;
+  const auto push_edges_of = [&](int node) {
+    for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
+      if (edges[e].a == node || edges[e].b == node) frontier.push({edges[e].omega, -e});
+    }
+  };
+  push_edges_of(reference);
+  while (!frontier.empty()) {
+    const PoseGraphEdge& edge = edges[-frontier.top().second];  // ties: lowest index first
+    frontier.pop();
+    if (poses[edge.a] && !poses[edge.b]) {
+      poses[edge.b] = *poses[edge.a] * edge.T_a_b;
+      push_edges_of(edge.b);
+    } else if (poses[edge.b] && !poses[edge.a]) {
+      poses[edge.a] = *poses[edge.b] * edge.T_a_b.inverse();
+      push_edges_of(edge.a);
+    }
+  }
+  return poses;
+}
+
+std::vector<std::optional<Pose2>> OptimizePoseGraph(
+    const std::vector<std::optional<Pose2>>& initial, const std::vector<PoseGraphEdge>& edges,
+    int reference, const PoseGraphOptions& options) {
+  std::vector<std::array<double, 3>> x(initial.size());
+  for (std::size_t n = 0; n < initial.size(); ++n) {
+    if (initial[n]) x[n] = {initial[n]->x_m(), initial[n]->y_m(), initial[n]->yaw_rad()};
+  }
+  ceres::Problem problem;
+  for (const PoseGraphEdge& edge : edges) {
+    if (!initial[edge.a] || !initial[edge.b]) continue;
+    auto* cost = new ceres::AutoDiffCostFunction<RelativePoseResidual, 3, 3, 3>(
+        new RelativePoseResidual(edge, options));
+    problem.AddResidualBlock(cost, MakeLoss(options), x[edge.a].data(), x[edge.b].data());
+  }
+  if (problem.HasParameterBlock(x[reference].data())) {
+    problem.SetParameterBlockConstant(x[reference].data());  // the gauge
+    ceres::Solver::Options solver;
+    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    solver.max_num_iterations = 100;
+    solver.logging_type = ceres::SILENT;
+    solver.num_threads = 1;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, &problem, &summary);
+  }
+  std::vector<std::optional<Pose2>> out(initial.size());
+  for (std::size_t n = 0; n < initial.size(); ++n) {
+    if (initial[n]) out[n] = Pose2(x[n][0], x[n][1], x[n][2]);
+  }
+  return out;
+}
+
+EdgeError EdgeDisagreement(const PoseGraphEdge& edge, const Pose2& T_ref_a, const Pose2& T_ref_b) {
+  const Pose2 delta = edge.T_a_b.inverse() * (T_ref_a.inverse() * T_ref_b);
+  return {std::abs(delta.yaw_rad()), delta.translation_m().norm()};
+}
+
+}  // namespace fleetmerge

@@ -1,0 +1,55 @@
+// Joint refinement of the poses of all maps of one connected component (the fleet extension of
+// the paper): nodes are maps, edges are pairwise hypotheses T_a_b weighted by their omega.
+//
+// For an edge (a, b) with measurement T_ab = (p_ab, yaw_ab) the residual is, as in Ceres'
+// pose_graph_2d example,
+//   r = sqrt(omega) * [ R(yaw_a)^T (p_b - p_a) - p_ab ] / sigma_t
+//       sqrt(omega) * wrap(yaw_b - yaw_a - yaw_ab)      / sigma_yaw
+// under a robust loss; the reference node is held constant (the gauge).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/pose2.hpp"
+
+namespace fleetmerge {
+
+enum class RobustLoss { kNone, kHuber, kCauchy };
+
+struct PoseGraphOptions {
+  RobustLoss loss = RobustLoss::kCauchy;
+  double loss_scale = 3.0;            // in sigmas of the whitened residual
+  double translation_sigma_m = 0.10;  // expected pairwise error, about two cells at 5 cm
+  double yaw_sigma_rad = 0.5 * M_PI / 180.0;
+  // An edge whose residual after solving exceeds these is inconsistent with its cycles.
+  double max_edge_yaw_error_rad = 1.0 * M_PI / 180.0;
+  double max_edge_translation_error_m = 0.25;
+};
+
+struct PoseGraphEdge {
+  int a = 0, b = 0;
+  Pose2 T_a_b;         // pose of b's frame in a's frame
+  double omega = 1.0;  // weight
+};
+
+// Poses T_ref_node of every node reached from `reference` by composing edges along a maximum-
+// omega spanning tree; nullopt for nodes not connected to it.
+std::vector<std::optional<Pose2>> SpanningTreePoses(int node_count,
+                                                    const std::vector<PoseGraphEdge>& edges,
+                                                    int reference);
+
+// Solves the graph from `initial` (nodes without a pose are left out) with `reference` fixed.
+std::vector<std::optional<Pose2>> OptimizePoseGraph(
+    const std::vector<std::optional<Pose2>>& initial, const std::vector<PoseGraphEdge>& edges,
+    int reference, const PoseGraphOptions& options);
+
+// How far an edge's measurement is from the poses: yaw and translation of
+// T_a_b^-1 * (T_ref_a^-1 T_ref_b).
+struct EdgeError {
+  double yaw_rad = 0.0;
+  double translation_m = 0.0;
+};
+EdgeError EdgeDisagreement(const PoseGraphEdge& edge, const Pose2& T_ref_a, const Pose2& T_ref_b);
+
+}  // namespace fleetmerge
