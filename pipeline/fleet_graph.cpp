@@ -93,12 +93,88 @@ bool FixWorstEdge(int map_count, std::vector<PairOutcome>& pairs, int reference,
   return true;
 }
 
+// Whether T_a_b agrees with the path a -> c -> b of two other accepted edges (tolerances doubled:
+// three pairwise errors add up around a triangle).
+bool TriangleAgrees(const Pose2& T_a_b, const Pose2& T_a_c, const Pose2& T_c_b,
+                    const PoseGraphOptions& options) {
+  const Pose2 delta = T_a_b.inverse() * (T_a_c * T_c_b);
+  return std::abs(delta.yaw_rad()) <= 2.0 * options.max_edge_yaw_error_rad &&
+         delta.translation_m().norm() <= 2.0 * options.max_edge_translation_error_m;
+}
+
+// Accepted pose of `to` in `from` per the pair's edge, if that pair is accepted.
+std::optional<Pose2> AcceptedEdge(const std::vector<std::vector<int>>& index,
+                                  const std::vector<PairOutcome>& pairs, int from, int to) {
+  const int k = index[from][to];
+  if (k < 0 || !pairs[k].accepted) return std::nullopt;
+  const Pose2& T = pairs[k].hypotheses[pairs[k].edge_hypothesis].T_a_b;
+  return pairs[k].a == from ? T : T.inverse();
+}
+
+// (supporting, contradicting) triangles of hypothesis T_a_b among the other accepted edges.
+std::pair<int, int> TriangleVotes(const std::vector<std::vector<int>>& index,
+                                  const std::vector<PairOutcome>& pairs, int a, int b,
+                                  const Pose2& T_a_b, const PoseGraphOptions& options) {
+  int support = 0, contradict = 0;
+  for (int c = 0; c < static_cast<int>(index.size()); ++c) {
+    if (c == a || c == b) continue;
+    const auto T_a_c = AcceptedEdge(index, pairs, a, c);
+    const auto T_c_b = AcceptedEdge(index, pairs, c, b);
+    if (!T_a_c || !T_c_b) continue;
+    (TriangleAgrees(T_a_b, *T_a_c, *T_c_b, options) ? support : contradict)++;
+  }
+  return {support, contradict};
+}
+
+// Before any solve (so the spanning tree cannot be led by a wrong edge): the edge most
+// contradicted by its triangles is replaced by a hypothesis they support, or rejected; repeat.
+void ResolveTriangleConflicts(int map_count, std::vector<PairOutcome>& pairs,
+                              const PoseGraphOptions& options) {
+  std::vector<std::vector<int>> index(map_count, std::vector<int>(map_count, -1));
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    index[pairs[k].a][pairs[k].b] = index[pairs[k].b][pairs[k].a] = k;
+  }
+  for (std::size_t round = 0; round < pairs.size(); ++round) {
+    int worst = -1, worst_margin = 0;
+    for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+      if (!pairs[k].accepted) continue;
+      const auto [support, contradict] =
+          TriangleVotes(index, pairs, pairs[k].a, pairs[k].b,
+                        pairs[k].hypotheses[pairs[k].edge_hypothesis].T_a_b, options);
+      if (contradict - support > worst_margin) worst = k, worst_margin = contradict - support;
+    }
+    if (worst < 0) return;
+    PairOutcome& pair = pairs[worst];
+    const int rejected = pair.edge_hypothesis;
+    pair.accepted = false;
+    for (int h = 0; h < static_cast<int>(pair.hypotheses.size()); ++h) {
+      if (h == rejected) continue;
+      const auto [support, contradict] =
+          TriangleVotes(index, pairs, pair.a, pair.b, pair.hypotheses[h].T_a_b, options);
+      if (support > contradict) {
+        pair.accepted = true;
+        pair.edge_hypothesis = h;
+        pair.note = "hypothesis " + std::to_string(rejected + 1) +
+                    " contradicted its triangles; replaced by hypothesis " + std::to_string(h + 1);
+        break;
+      }
+    }
+    if (!pair.accepted) {
+      pair.note = "rejected: hypothesis " + std::to_string(rejected + 1) + " contradicted by " +
+                  std::to_string(worst_margin) +
+                  " more triangles than support it, and no other hypothesis agrees";
+    }
+  }
+}
+
 }  // namespace
 
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
                            const PoseGraphOptions& options) {
   FleetGraph graph;
-  // Each fix removes or replaces one edge, so this ends; the bound is for safety.
+  ResolveTriangleConflicts(map_count, pairs, options);
+  // Longer cycles: solve, take out the worst edge, repeat. Each fix removes or replaces one edge,
+  // so this ends; the bound is for safety.
   for (std::size_t round = 0; round <= 2 * pairs.size(); ++round) {
     graph.component_of = Components(map_count, pairs);
     bool changed = false;

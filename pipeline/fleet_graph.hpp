@@ -1,6 +1,9 @@
 // Stage 2 of fleet merging: from pairwise outcomes to consistent map poses.
 //
-// Accepted pairs are edges weighted by omega. Per connected component: initial poses from a
+// Accepted pairs are edges weighted by omega. First every edge is checked against the triangles
+// it closes with other edges (independent of any initial guess): the most contradicted edge is
+// replaced by one of its pair's other hypotheses that its triangles support, or rejected. Then
+// per connected component: initial poses from a
 // maximum-omega spanning tree, one Ceres problem over all poses (refine/pose_graph.hpp), then
 // the edge that most disagrees with its cycles is taken out; if one of that pair's other
 // hypotheses agrees with the poses solved without it, that hypothesis replaces it, else the pair
