@@ -1,0 +1,68 @@
+// End to end fleet merging of 8 maps of about 600 x 600 cells: load (PGM + YAML), all 28 pairs,
+// pose graph, compositing and writing, on all cores. Run:
+//   ./build/tests/benchmarks/fleet_benchmark --benchmark_repetitions=5 \
+//       --benchmark_report_aggregates_only=true
+// The maps are cut from willow-full-0.05 (1165 x 945 cells) in ../shared as 8 robots (4 x 2 tiles
+// grown by 30 %, each re-framed at random), or from a synthetic office without it; they are
+// written once to a temporary folder so that loading is timed too.
+#include <cstdio>
+#include <random>
+#include <sstream>
+
+#include <benchmark/benchmark.h>
+
+#include "io/map_io.hpp"
+#include "pipeline/ground_truth_pair.hpp"
+#include "pipeline/job.hpp"
+#include "pipeline/merge_command.hpp"
+#include "pipeline/synthetic_office.hpp"
+#include "tests/support/shared_data.hpp"
+
+namespace fleetmerge {
+namespace {
+
+const Job& EightMapJob() {
+  static const Job job = [] {
+    OccupancyGrid building;
+    if (const auto dir = testing::SharedMapsDir()) {
+      building = LoadMap(*dir / "willow-full-0.05.yaml").grid;
+    } else {
+      OfficeOptions office;
+      office.width_m = 58.0;
+      office.height_m = 47.0;
+      building = GenerateOfficeFloor(office, 3);
+    }
+    std::mt19937 rng(2);
+    const GroundTruthFleet fleet = CutFleet(building, 8, rng);
+    Job j;
+    j.name = "bench";
+    const auto dir = testing::MakeTempDir("fleet_benchmark");
+    j.output_dir = dir / "out";
+    for (std::size_t m = 0; m < fleet.maps.size(); ++m) {
+      const auto path = dir / ("robot_" + std::to_string(m) + ".yaml");
+      SaveMap(fleet.maps[m], path);
+      j.maps.push_back({path.stem().string(), path, path});
+      std::fprintf(stderr, "robot_%zu: %d x %d cells\n", m, fleet.maps[m].width(),
+                   fleet.maps[m].height());
+    }
+    j.reference = j.maps.front().name;
+    return j;
+  }();
+  return job;
+}
+
+void BM_MergeEightMaps(benchmark::State& state) {
+  Job job = EightMapJob();
+  job.options.threads = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    std::ostringstream out, err;
+    if (RunJobs({job}, /*quiet=*/true, out, err) != 0) state.SkipWithError(err.str().c_str());
+  }
+  state.SetLabel(std::to_string(state.range(0)) + " thread(s)");
+}
+BENCHMARK(BM_MergeEightMaps)->Arg(2)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace fleetmerge
+
+BENCHMARK_MAIN();
