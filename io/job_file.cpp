@@ -23,7 +23,7 @@ namespace {
 // clang-format off
 const std::vector<std::string> kJobKeys = {
     "name", "maps", "output", "reference", "resolution", "threads", "hypotheses_per_pair",
-    "omega_threshold", "min_overlap_cells", "refine", "seed", "hough", "translation",
+    "omega_threshold", "min_overlap_cells", "min_wall_agreement", "refine", "seed", "hough", "translation",
     "pose_graph", "fusion"};
 // clang-format on
 
@@ -88,6 +88,9 @@ void ReadOptions(const YamlMapping& job, FleetOptions& options, const YamlErrors
   }
   if (auto f = job.Find("omega_threshold")) {
     options.omega_threshold = ReadNumber(*f, 0, 1, false, errors);
+  }
+  if (auto f = job.Find("min_wall_agreement")) {
+    options.min_wall_agreement = ReadNumber(*f, 0, 1, false, errors);
   }
   if (auto f = job.Find("min_overlap_cells")) {
     options.min_overlap_cells = ReadInteger(*f, 0, INT_MAX, errors);

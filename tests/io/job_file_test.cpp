@@ -41,6 +41,7 @@ void ExpectSameOptions(const FleetOptions& a, const FleetOptions& b) {
   EXPECT_EQ(a.resolution_m, b.resolution_m);
   EXPECT_EQ(a.omega_threshold, b.omega_threshold);
   EXPECT_EQ(a.min_overlap_cells, b.min_overlap_cells);
+  EXPECT_EQ(a.min_wall_agreement, b.min_wall_agreement);
   EXPECT_EQ(a.fusion, b.fusion);
   EXPECT_EQ(a.threads, b.threads);
   const HypothesisOptions& ha = a.pair.hypotheses;
@@ -146,6 +147,7 @@ TEST_F(JobFileTest, EveryKeyIsParsedIntoItsField) {
       "hypotheses_per_pair: 7\n"
       "omega_threshold: 0.85\n"
       "min_overlap_cells: 500\n"
+      "min_wall_agreement: 0.6\n"
       "refine: false\n"
       "seed: 42\n"
       "hough: {n_theta: 360, rho_step: 2.5, sampling: 'random:0.5'}\n"
@@ -173,6 +175,7 @@ TEST_F(JobFileTest, EveryKeyIsParsedIntoItsField) {
   EXPECT_EQ(o.pair.hypotheses.max_hypotheses, 7);
   EXPECT_EQ(o.omega_threshold, 0.85);
   EXPECT_EQ(o.min_overlap_cells, 500);
+  EXPECT_EQ(o.min_wall_agreement, 0.6);
   EXPECT_FALSE(o.pair.refine);
   const HypothesisOptions& h = o.pair.hypotheses;
   EXPECT_EQ(h.hough.n_theta, 360);
@@ -306,6 +309,8 @@ TEST_F(JobFileTest, EveryValueIsTypeAndRangeChecked) {
       {"hypotheses_per_pair: 0\n", "hypotheses_per_pair", "expected an integer in [1, 100]"},
       {"hypotheses_per_pair: 101\n", "hypotheses_per_pair", "in [1, 100], got '101'"},
       {"omega_threshold: 1.1\n", "omega_threshold", "expected a number in [0, 1], got '1.1'"},
+      {"min_wall_agreement: -0.1\n", "min_wall_agreement",
+       "expected a number in [0, 1], got '-0.1'"},
       {"omega_threshold: -0.1\n", "omega_threshold", "in [0, 1]"},
       {"omega_threshold: .nan\n", "omega_threshold", "in [0, 1]"},
       {"omega_threshold: '0.9'\n", "omega_threshold", "got '0.9' (quoted, so a string)"},
