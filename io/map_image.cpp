@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
 
@@ -108,10 +109,20 @@ MapImage ReadMapImage(const fs::path& image_path, const fs::path& yaml_path) {
               "has " + std::to_string(raw.channels()) +
                   " channels, expected 1 (grey), 2 (grey+alpha), 3 (RGB) or 4 (RGBA)");
   }
+  if (raw.type() == CV_8UC1) return MapImage{{}, {}, raw};
   return Normalise(raw, SampleScale(raw, image_path));
 }
 
 cv::Mat1b PixelsToCells(const MapImage& image, const MapMetadata& metadata) {
+  if (!image.grey8.empty()) {
+    // The same rule as below, evaluated once per grey level.
+    cv::Mat1b table(1, 256);
+    for (int v = 0; v < 256; ++v) table(0, v) = std::uint8_t(Classify(v, true, metadata));
+    cv::Mat1b cells;
+    cv::LUT(image.grey8, table, cells);
+    cv::flip(cells, cells, 0);  // image row 0 is the top of the map; grid row 0 the bottom
+    return cells;
+  }
   const int rows = image.value.rows;
   cv::Mat1b cells(rows, image.value.cols);
   for (int r = 0; r < rows; ++r) {

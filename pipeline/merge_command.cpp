@@ -2,9 +2,14 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <exception>
+#include <optional>
 #include <ostream>
+#include <thread>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -56,16 +61,44 @@ std::vector<std::string> WriteOutputs(const Job& job, const FleetResult& result,
   return files;
 }
 
+// Loads the job's maps on `threads` threads (0: all cores); a failure is reported for the first
+// failing map in job order, as a sequential load would.
+std::vector<LoadedMap> LoadMaps(const Job& job, int threads) {
+  const std::size_t n = job.maps.size();
+  std::vector<std::optional<LoadedMap>> loaded(n);
+  std::vector<std::exception_ptr> failures(n);
+  std::atomic<std::size_t> next{0};
+  const auto worker = [&] {
+    for (std::size_t m = next++; m < n; m = next++) {
+      try {
+        loaded[m] = LoadMap(job.maps[m].path);
+      } catch (...) {
+        failures[m] = std::current_exception();
+      }
+    }
+  };
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < std::min<int>(threads, static_cast<int>(n)); ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& thread : pool) thread.join();
+  std::vector<LoadedMap> out;
+  for (std::size_t m = 0; m < n; ++m) {
+    if (failures[m]) std::rethrow_exception(failures[m]);
+    out.push_back(std::move(*loaded[m]));
+  }
+  return out;
+}
+
 void RunJob(const Job& job, bool quiet, std::ostream& out, std::ostream& err) {
   const auto start = Clock::now();
   JobTiming timing;
-  std::vector<LoadedMap> loaded;
+  const std::vector<LoadedMap> loaded = LoadMaps(job, job.options.threads);
   std::vector<std::filesystem::path> protect = {job.job_file};
   int reference = 0;
   for (std::size_t m = 0; m < job.maps.size(); ++m) {
-    loaded.push_back(LoadMap(job.maps[m].path));
-    protect.push_back(loaded.back().metadata.yaml_path);
-    protect.push_back(loaded.back().metadata.image_path);
+    protect.push_back(loaded[m].metadata.yaml_path);
+    protect.push_back(loaded[m].metadata.image_path);
     if (job.maps[m].name == job.reference) reference = static_cast<int>(m);
   }
   timing.load_ms = MillisecondsSince(start);
