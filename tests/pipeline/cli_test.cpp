@@ -2,33 +2,18 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
-#include <array>
-#include <cstdio>
-#include <fstream>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tests/support/run_command.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {
 namespace {
 
-struct CommandRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-CommandRun Fleetmerge(const std::string& args, bool merge_stderr = true) {
-  const std::string command =
-      std::string(FLEETMERGE_EXECUTABLE) + " " + args + (merge_stderr ? " 2>&1" : " 2>/dev/null");
-  CommandRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return run;
-  std::array<char, 4096> buffer;
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) run.output += buffer.data();
-  const int status = pclose(pipe);
-  run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
+testing::CommandResult Fleetmerge(const std::string& args) {
+  return testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " " + args);
 }
 
 class CliTest : public ::testing::Test {
@@ -44,9 +29,9 @@ class CliTest : public ::testing::Test {
 std::filesystem::path* CliTest::dir_ = nullptr;
 
 TEST_F(CliTest, JsonHasTheDocumentedShapeAndFindsTheTruth) {
-  const CommandRun run = Fleetmerge("pair " + A() + " " + B() + " --json -n 3", false);
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  const auto j = nlohmann::json::parse(run.output);
+  const auto run = Fleetmerge("pair " + A() + " " + B() + " --json -n 3");
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  const auto j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j["a"], A());
   EXPECT_EQ(j["b"], B());
   ASSERT_GE(j["hypotheses"].size(), 1u);
@@ -68,14 +53,14 @@ TEST_F(CliTest, JsonHasTheDocumentedShapeAndFindsTheTruth) {
 
 TEST_F(CliTest, TableAndMergedOutput) {
   const auto out = *dir_ / "merged";
-  const CommandRun run = Fleetmerge("pair " + A() + " " + B() + " --out " + out.string());
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_NE(run.output.find("omega"), std::string::npos);
-  EXPECT_NE(run.output.find("merged map: "), std::string::npos);
+  const auto run = Fleetmerge("pair " + A() + " " + B() + " --out " + out.string());
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  EXPECT_NE(run.both().find("omega"), std::string::npos);
+  EXPECT_NE(run.both().find("merged map: "), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(out / "merged.yaml"));
   EXPECT_TRUE(std::filesystem::exists(out / "merged.pgm"));
   EXPECT_TRUE(std::filesystem::exists(out / "merged_preview.png"));
-  const CommandRun again = Fleetmerge("pair " + A() + " " + B() + " --out " + out.string());
+  const auto again = Fleetmerge("pair " + A() + " " + B() + " --out " + out.string());
   EXPECT_EQ(again.exit_code, 0) << "re-running into the same folder replaces its results";
 }
 
@@ -86,24 +71,24 @@ TEST_F(CliTest, RefusesToOverwriteAnInputMap) {
   std::filesystem::copy_file(A(), folder / "merged.yaml");
   std::filesystem::copy_file(*dir_ / "maps" / "robot_a.pgm", folder / "robot_a.pgm");
   const auto before = std::filesystem::file_size(folder / "merged.yaml");
-  const CommandRun run = Fleetmerge("pair " + (folder / "merged.yaml").string() + " " + B() +
-                                    " --out " + folder.string());
+  const auto run = Fleetmerge("pair " + (folder / "merged.yaml").string() + " " + B() + " --out " +
+                              folder.string());
   EXPECT_NE(run.exit_code, 0);
-  EXPECT_NE(run.output.find("refusing to overwrite"), std::string::npos) << run.output;
+  EXPECT_NE(run.both().find("refusing to overwrite"), std::string::npos) << run.both();
   EXPECT_EQ(std::filesystem::file_size(folder / "merged.yaml"), before);
 }
 
 TEST_F(CliTest, MissingFileNamesThePath) {
-  const CommandRun run = Fleetmerge("pair /nonexistent/a.yaml " + B());
+  const auto run = Fleetmerge("pair /nonexistent/a.yaml " + B());
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.output.find("/nonexistent/a.yaml"), std::string::npos) << run.output;
+  EXPECT_NE(run.both().find("/nonexistent/a.yaml"), std::string::npos) << run.both();
 }
 
 TEST_F(CliTest, BadSamplingOptionIsExplained) {
-  const CommandRun run = Fleetmerge("pair " + A() + " " + B() + " --hough-sampling random:2");
+  const auto run = Fleetmerge("pair " + A() + " " + B() + " --hough-sampling random:2");
   EXPECT_NE(run.exit_code, 0);
-  EXPECT_NE(run.output.find("--hough-sampling: expected 'all', 'random:F'"), std::string::npos)
-      << run.output;
+  EXPECT_NE(run.both().find("--hough-sampling: expected 'all', 'random:F'"), std::string::npos)
+      << run.both();
 }
 
 TEST_F(CliTest, UsageErrorsExitNonZero) {
@@ -114,10 +99,10 @@ TEST_F(CliTest, UsageErrorsExitNonZero) {
 }
 
 TEST_F(CliTest, PaperMethodIsSelectable) {
-  const CommandRun run =
-      Fleetmerge("pair " + A() + " " + B() + " --translation spectra --no-refine --json", false);
-  ASSERT_EQ(run.exit_code, 0) << run.output;
-  EXPECT_GE(nlohmann::json::parse(run.output)["hypotheses"].size(), 1u);
+  const auto run =
+      Fleetmerge("pair " + A() + " " + B() + " --translation spectra --no-refine --json");
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  EXPECT_GE(nlohmann::json::parse(run.out)["hypotheses"].size(), 1u);
 }
 
 }  // namespace
