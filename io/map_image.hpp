@@ -21,6 +21,7 @@ struct MapImage {
   // a 256-entry table then classifies the pixels with no full-size intermediate images, whose
   // fresh allocations (page faults) cost ~25 ms for a 600 x 600 map here.
   cv::Mat1b grey8;
+  cv::Size size() const { return grey8.empty() ? value.size() : grey8.size(); }
 };
 
 // Decodes `image_path` (anything cv::imread reads: PGM P2/P5, PNG grey, grey+alpha, RGB, RGBA;

@@ -14,7 +14,7 @@ namespace fs = std::filesystem;
 LoadedMap LoadMap(const fs::path& yaml_path) {
   MapMetadata metadata = ReadMapYaml(yaml_path);
   const MapImage image = ReadMapImage(metadata.image_path, yaml_path);
-  const GridGeometry geometry(metadata.resolution_m, {image.value.cols, image.value.rows},
+  const GridGeometry geometry(metadata.resolution_m, {image.size().width, image.size().height},
                               metadata.origin);
   OccupancyGrid grid(geometry, PixelsToCells(image, metadata));
   return LoadedMap{std::move(grid), std::move(metadata)};
