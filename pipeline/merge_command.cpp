@@ -28,7 +28,8 @@ double MillisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-// A bar redrawn in place on a terminal; otherwise a line per stage at 0, 25, 50, 75, 100 %.
+// A bar redrawn in place on a terminal; otherwise a line per stage about every quarter of its
+// work and at its end.
 ProgressFn MakeProgress(const std::string& job, bool quiet, std::ostream& err) {
   if (quiet) return {};
   const bool terminal = isatty(fileno(stderr)) != 0;
@@ -130,6 +131,18 @@ Job JobFromMapList(const MergeCommand& command) {
   job.output_dir = *command.out_dir;
   job.options = command.options;
   for (const auto& path : command.inputs) {
+    for (const JobMap& earlier : job.maps) {
+      std::error_code ec;
+      if (std::filesystem::equivalent(earlier.path, path, ec)) {
+        throw Error(path.string() + " is listed twice (the same file as " + earlier.path.string() +
+                    ")");
+      }
+      if (earlier.name == path.stem().string()) {
+        throw Error(path.string() + " and " + earlier.path.string() + " would both be named '" +
+                    earlier.name + "' (maps are named by file stem with --out; give them " +
+                    "distinct file names or use a job file with 'name' keys)");
+      }
+    }
     job.maps.push_back({path.stem().string(), path, path});
   }
   job.reference = command.reference.value_or(job.maps.empty() ? "" : job.maps.front().name);

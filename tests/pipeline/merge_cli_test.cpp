@@ -458,3 +458,35 @@ TEST_F(MergeCliTest, RefusesToOverwriteAnInputAndItsImage) {
 
 }  // namespace
 }  // namespace fleetmerge
+
+namespace fleetmerge {
+namespace {
+
+TEST(MergeCliDuplicates, SameFileTwiceAndClashingNamesAreRefused) {
+  const auto dir = testing::MakeTempDir("merge_dup");
+  ASSERT_EQ(testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " example " +
+                                (dir / "s1").string() + " --seed 1")
+                .exit_code,
+            0);
+  ASSERT_EQ(testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " example " +
+                                (dir / "s2").string() + " --seed 2")
+                .exit_code,
+            0);
+  const std::string a1 = (dir / "s1" / "robot_a.yaml").string();
+  const std::string a2 = (dir / "s2" / "robot_a.yaml").string();
+  const auto twice =
+      testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " merge --quiet --out " +
+                          (dir / "o1").string() + " " + a1 + " " + a1);
+  EXPECT_NE(twice.exit_code, 0);
+  EXPECT_NE(twice.err.find("is listed twice"), std::string::npos) << twice.err;
+  const auto clash =
+      testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " merge --quiet --out " +
+                          (dir / "o2").string() + " " + a1 + " " + a2);
+  EXPECT_NE(clash.exit_code, 0);
+  EXPECT_NE(clash.err.find("would both be named 'robot_a'"), std::string::npos) << clash.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "o1"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "o2"));
+}
+
+}  // namespace
+}  // namespace fleetmerge
