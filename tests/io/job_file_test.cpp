@@ -19,15 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 namespace ft = fleetmerge::testing;
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << text << "' does not contain '" << part << "'";
-}
-
-::testing::AssertionResult StartsWith(const std::string& text, const std::string& prefix) {
-  if (text.rfind(prefix, 0) == 0) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << text << "' does not start with '" << prefix << "'";
-}
+using ft::Contains;
+using ft::StartsWith;
 
 void ExpectSameSampling(const SamplingOptions& a, const SamplingOptions& b) {
   EXPECT_EQ(a.mode, b.mode);

@@ -17,15 +17,8 @@ namespace {
 namespace fs = std::filesystem;
 namespace ft = fleetmerge::testing;
 
-::testing::AssertionResult Contains(const std::string& text, const std::string& part) {
-  if (text.find(part) != std::string::npos) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << text << "' does not contain '" << part << "'";
-}
-
-::testing::AssertionResult StartsWith(const std::string& text, const std::string& prefix) {
-  if (text.rfind(prefix, 0) == 0) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "'" << text << "' does not start with '" << prefix << "'";
-}
+using ft::Contains;
+using ft::StartsWith;
 
 // The message of the fleetmerge::Error LoadMap throws (a test failure if it throws nothing).
 std::string LoadError(const fs::path& yaml_path) {
