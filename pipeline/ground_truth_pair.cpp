@@ -28,7 +28,7 @@ OccupancyGrid Reframe(const OccupancyGrid& part, const Pose2& T_map_new) {
   const double r = part.geometry().resolution_m();
   const GridGeometry& gp = part.geometry();
   Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-  for (const Eigen::Vector2d corner_grid :
+  for (const Eigen::Vector2d& corner_grid :
        {Eigen::Vector2d(0, 0), Eigen::Vector2d(gp.width() * r, 0),
         Eigen::Vector2d(0, gp.height() * r), Eigen::Vector2d(gp.width() * r, gp.height() * r)}) {
     const Eigen::Vector2d p_new = T_map_new.inverse() * (gp.T_map_grid() * corner_grid);
