@@ -1,14 +1,12 @@
 #include "pipeline/all_pairs.hpp"
 
-#include <algorithm>
 #include <atomic>
-#include <exception>
 #include <mutex>
-#include <thread>
 
 #include "core/acceptance_index.hpp"
 #include "core/hypothesis_generator.hpp"
 #include "core/wall_agreement.hpp"
+#include "pipeline/parallel.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -44,32 +42,16 @@ std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
     for (int b = a + 1; b < static_cast<int>(maps.size()); ++b) jobs.emplace_back(a, b);
   }
   std::vector<PairOutcome> outcomes(jobs.size());
-  std::atomic<std::size_t> next{0};
   std::atomic<int> done{0};
-  std::mutex mutex;  // guards progress calls and `failure`
-  std::exception_ptr failure;
-  const auto worker = [&] {
-    for (std::size_t k = next++; k < jobs.size(); k = next++) {
-      try {
-        outcomes[k] = ComputePair(maps, jobs[k].first, jobs[k].second, options);
-      } catch (...) {  // rethrown on the calling thread; the other pairs finish first
-        const std::lock_guard<std::mutex> lock(mutex);
-        if (!failure) failure = std::current_exception();
-      }
-      const int finished = ++done;
-      if (progress) {
-        const std::lock_guard<std::mutex> lock(mutex);
-        progress("pairs", finished, static_cast<int>(jobs.size()));
-      }
+  std::mutex progress_mutex;
+  ParallelFor(jobs.size(), threads, [&](std::size_t k) {
+    outcomes[k] = ComputePair(maps, jobs[k].first, jobs[k].second, options);
+    const int finished = ++done;
+    if (progress) {
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      progress("pairs", finished, static_cast<int>(jobs.size()));
     }
-  };
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  threads = std::min<int>(threads, std::max<std::size_t>(jobs.size(), 1));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();  // this thread works too
-  for (auto& thread : pool) thread.join();
-  if (failure) std::rethrow_exception(failure);
+  });
   return outcomes;
 }
 

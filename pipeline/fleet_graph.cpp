@@ -167,6 +167,13 @@ void ResolveTriangleConflicts(int map_count, std::vector<PairOutcome>& pairs,
   }
 }
 
+// The map whose frame is component c's: the job's reference if it is in c, else c's first map.
+int ComponentReference(const std::vector<int>& component_of, int c, int reference) {
+  if (component_of[reference] == c) return reference;
+  return static_cast<int>(std::find(component_of.begin(), component_of.end(), c) -
+                          component_of.begin());
+}
+
 }  // namespace
 
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
@@ -180,11 +187,8 @@ FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int r
     bool changed = false;
     for (int c = 0, n = 1 + *std::max_element(graph.component_of.begin(), graph.component_of.end());
          c < n && !changed; ++c) {
-      const int ref = graph.component_of[reference] == c
-                          ? reference
-                          : int(std::find(graph.component_of.begin(), graph.component_of.end(), c) -
-                                graph.component_of.begin());
-      changed = FixWorstEdge(map_count, pairs, ref, options);
+      changed = FixWorstEdge(map_count, pairs, ComponentReference(graph.component_of, c, reference),
+                             options);
     }
     if (!changed) break;
   }
@@ -194,9 +198,7 @@ FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int r
   graph.component_reference.assign(components, -1);
   graph.T_component_map.assign(map_count, Pose2());
   for (int c = 0; c < components; ++c) {
-    int ref = -1;
-    for (int m = 0; m < map_count && ref < 0; ++m) ref = graph.component_of[m] == c ? m : -1;
-    if (graph.component_of[reference] == c) ref = reference;
+    const int ref = ComponentReference(graph.component_of, c, reference);
     graph.component_reference[c] = ref;
     const auto poses = Solve(map_count, pairs, ref, options);
     for (int m = 0; m < map_count; ++m) {

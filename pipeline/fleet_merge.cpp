@@ -7,14 +7,10 @@
 #include "core/resample.hpp"
 #include "pipeline/composite.hpp"
 #include "pipeline/fleet_graph.hpp"
+#include "pipeline/parallel.hpp"
 
 namespace fleetmerge {
 namespace {
-
-double MillisecondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
 
 std::vector<OccupancyGrid> AtOneResolution(const std::vector<const OccupancyGrid*>& maps,
                                            double resolution_m) {

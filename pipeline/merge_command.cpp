@@ -2,20 +2,18 @@
 
 #include <unistd.h>
 
-#include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <exception>
 #include <optional>
 #include <ostream>
-#include <thread>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/job_file.hpp"
 #include "io/map_io.hpp"
 #include "pipeline/fleet_merge.hpp"
+#include "pipeline/parallel.hpp"
 #include "pipeline/preview.hpp"
 #include "pipeline/report_json.hpp"
 
@@ -23,10 +21,6 @@ namespace fleetmerge {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double MillisecondsSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // A bar redrawn in place on a terminal; otherwise a line per stage about every quarter of its
 // work and at its end.
@@ -65,26 +59,17 @@ std::vector<std::string> WriteOutputs(const Job& job, const FleetResult& result,
 // Loads the job's maps on `threads` threads (0: all cores); a failure is reported for the first
 // failing map in job order, as a sequential load would.
 std::vector<LoadedMap> LoadMaps(const Job& job, int threads) {
-  const std::size_t n = job.maps.size();
-  std::vector<std::optional<LoadedMap>> loaded(n);
-  std::vector<std::exception_ptr> failures(n);
-  std::atomic<std::size_t> next{0};
-  const auto worker = [&] {
-    for (std::size_t m = next++; m < n; m = next++) {
-      try {
-        loaded[m] = LoadMap(job.maps[m].path);
-      } catch (...) {
-        failures[m] = std::current_exception();
-      }
+  std::vector<std::optional<LoadedMap>> loaded(job.maps.size());
+  std::vector<std::exception_ptr> failures(job.maps.size());
+  ParallelFor(job.maps.size(), threads, [&](std::size_t m) {
+    try {
+      loaded[m] = LoadMap(job.maps[m].path);
+    } catch (...) {  // kept per map so that the first in job order is the one reported
+      failures[m] = std::current_exception();
     }
-  };
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  std::vector<std::thread> pool;
-  for (int t = 1; t < std::min<int>(threads, static_cast<int>(n)); ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& thread : pool) thread.join();
+  });
   std::vector<LoadedMap> out;
-  for (std::size_t m = 0; m < n; ++m) {
+  for (std::size_t m = 0; m < job.maps.size(); ++m) {
     if (failures[m]) std::rethrow_exception(failures[m]);
     out.push_back(std::move(*loaded[m]));
   }

@@ -1,0 +1,21 @@
+// The small concurrency and timing helpers the pipeline stages share.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <functional>
+
+namespace fleetmerge {
+
+// Runs body(k) for k in [0, count) on `threads` threads (<= 0: all cores), the calling thread
+// included. Indices are handed out one at a time, so each k runs exactly once; what body writes
+// at index k does not depend on the thread count. If any body throws, the remaining indices
+// still run and the first exception (in time) is rethrown here.
+void ParallelFor(std::size_t count, int threads, const std::function<void(std::size_t)>& body);
+
+inline double MillisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+}  // namespace fleetmerge
