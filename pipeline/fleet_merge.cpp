@@ -15,10 +15,8 @@ namespace {
 std::vector<OccupancyGrid> AtOneResolution(const std::vector<const OccupancyGrid*>& maps,
                                            double resolution_m) {
   std::vector<OccupancyGrid> out;
-  for (const OccupancyGrid* m : maps) {
-    const bool same = std::abs(m->geometry().resolution_m() - resolution_m) <= 1e-9 * resolution_m;
-    out.push_back(same ? *m : ResampleToResolution(*m, resolution_m));
-  }
+  // A map already at resolution_m comes back as a copy (ResampleToResolution's contract).
+  for (const OccupancyGrid* m : maps) out.push_back(ResampleToResolution(*m, resolution_m));
   return out;
 }
 

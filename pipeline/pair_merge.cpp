@@ -95,12 +95,9 @@ PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairO
   const double ra = a.geometry().resolution_m(), rb = b.geometry().resolution_m();
   result.resolution_m = std::min(ra, rb);
   result.resampled = std::abs(ra - rb) > 1e-9 * result.resolution_m;
-  const OccupancyGrid a_same = ra > result.resolution_m && result.resampled
-                                   ? ResampleToResolution(a, result.resolution_m)
-                                   : a;
-  const OccupancyGrid b_same = rb > result.resolution_m && result.resampled
-                                   ? ResampleToResolution(b, result.resolution_m)
-                                   : b;
+  // A copy for the map already at the finer resolution (ResampleToResolution's contract).
+  const OccupancyGrid a_same = ResampleToResolution(a, result.resolution_m);
+  const OccupancyGrid b_same = ResampleToResolution(b, result.resolution_m);
   for (const auto& h : RankedCellHypotheses(a_same, b_same, options)) {
     result.hypotheses.push_back(
         {MapPoseFromCellPose(a_same.geometry(), b_same.geometry(), h.T_ga_gb), h.omega});
