@@ -8,6 +8,7 @@
 #include "pipeline/example_command.hpp"
 #include "pipeline/merge_command.hpp"
 #include "pipeline/pair_command.hpp"
+#include "pipeline/simulate_command.hpp"
 
 int main(int argc, char** argv) {
   using namespace fleetmerge;
@@ -52,6 +53,9 @@ int main(int argc, char** argv) {
   example_app->add_option("dir", example.out_dir, "output folder")->required();
   example_app->add_option("--seed", example.seed, "random seed")->capture_default_str();
 
+  SimulateCommand simulate;
+  CLI::App* simulate_app = AddSimulateCommand(app, simulate);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -64,6 +68,7 @@ int main(int argc, char** argv) {
     if (merge_app->parsed()) return RunMergeCommand(merge, std::cout, std::cerr);
     if (pair_app->parsed()) return RunPairCommand(pair, std::cout);
     if (example_app->parsed()) return RunExampleCommand(example, std::cout);
+    if (simulate_app->parsed()) return RunSimulateCommand(simulate, std::cout);
   } catch (const Error& e) {
     std::cerr << "fleetmerge: error: " << e.what() << "\n";
     return 1;

@@ -3,36 +3,20 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
-#include <random>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/error.hpp"
+#include "pipeline/portable_rng.hpp"
 
 namespace fleetmerge {
 namespace {
 
 constexpr double kMinRoomDepthM = 2.0;
 
-// Random numbers that are the same with every standard library: std::mt19937's output sequence
-// is fixed by the standard, the mapping to a range is done here (see the header).
-class Rng {
- public:
-  explicit Rng(std::uint32_t seed) : engine_(seed) {}
-  // Uniform in [lo, hi).
-  double Uniform(double lo, double hi) {
-    return lo + (hi - lo) * (static_cast<double>(engine_()) / 4294967296.0);  // / 2^32
-  }
-  // Uniform integer in [lo, hi] (hi >= lo).
-  int UniformInt(int lo, int hi) {
-    return std::min(hi, lo + static_cast<int>(std::floor(Uniform(0.0, hi - lo + 1.0))));
-  }
-
- private:
-  std::mt19937 engine_;
-};
+using Rng = PortableRng;
 
 // The options converted to whole cells once, so all drawing is exact integer geometry.
 struct Dimensions {

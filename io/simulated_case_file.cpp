@@ -1,0 +1,56 @@
+#include "io/simulated_case_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/map_io.hpp"
+
+namespace fleetmerge {
+namespace {
+
+std::string JobYaml(const SimulatedCase& simulated) {
+  YAML::Emitter out;
+  out << YAML::Comment(
+      "fleetmerge simulate: merge the simulated robot maps (truth.yaml has the answer)");
+  out << YAML::BeginMap;
+  out << YAML::Key << "name" << YAML::Value << "simulated";
+  out << YAML::Key << "maps" << YAML::Value << YAML::BeginSeq;
+  for (const auto& name : simulated.names) out << name + ".yaml";
+  out << YAML::EndSeq;
+  out << YAML::Key << "output" << YAML::Value << "merged";
+  out << YAML::EndMap;
+  return std::string(out.c_str()) + "\n";
+}
+
+}  // namespace
+
+WrittenCase WriteSimulatedCase(const SimulatedCase& simulated, const std::filesystem::path& dir,
+                               const std::vector<std::filesystem::path>& protected_inputs) {
+  if (simulated.maps.size() != simulated.names.size() ||
+      simulated.maps.size() != simulated.truth.maps.size()) {
+    throw Error("simulated case: maps, names and truth maps differ in number");
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw Error(dir.string() + ": cannot create the output folder: " + ec.message());
+  WrittenCase written;
+  written.truth_yaml = dir / "truth.yaml";
+  written.job_yaml = dir / "job.yaml";
+  for (const auto& name : simulated.names) {
+    written.map_yamls.push_back(dir / (name + ".yaml"));
+    CheckNotAnInput(written.map_yamls.back(), protected_inputs);
+    CheckNotAnInput(dir / (name + ".pgm"), protected_inputs);
+  }
+  CheckNotAnInput(written.truth_yaml, protected_inputs);
+  CheckNotAnInput(written.job_yaml, protected_inputs);
+
+  for (std::size_t k = 0; k < simulated.maps.size(); ++k) {
+    SaveMap(simulated.maps[k], written.map_yamls[k], protected_inputs);
+  }
+  SaveTruth(simulated.truth, written.truth_yaml);
+  WriteFileAtomically(written.job_yaml, JobYaml(simulated), protected_inputs);
+  return written;
+}
+
+}  // namespace fleetmerge

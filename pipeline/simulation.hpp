@@ -1,0 +1,63 @@
+// `fleetmerge simulate` as a library: multi-robot test cases with known answers. K robots start
+// at random free places of a building map, explore it along collision-free paths, scan it with a
+// simulated 2-D lidar and each build a partial occupancy grid in a random frame of its own, as
+// SLAM would; the case holds the robot maps and the ground truth (truth.yaml's contents: the
+// pose of every map's frame in its building's frame, the true overlap of every pair).
+//
+// The steps live in simulation_lidar (ray casting), simulation_explore (clearance, starts,
+// frontier-like goals and paths), simulation_mapping (one robot's grid) and simulation_robot
+// (one robot's run); this file assembles the case. Writing it to disk: io/simulated_case_file.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/occupancy_grid.hpp"
+#include "io/truth_file.hpp"
+#include "pipeline/simulation_options.hpp"
+#include "pipeline/synthetic_office.hpp"
+
+namespace fleetmerge {
+
+// A building the robots explore: its map (kFree = traversable, kOccupied = walls; kUnknown stops
+// a beam without a return), its name in truth.yaml and where it came from.
+struct SimulationBuilding {
+  OccupancyGrid grid;
+  std::string name;    // "office", "foreign", ...
+  std::string source;  // the map's YAML path, or "synthetic office seed 7"
+};
+
+// The synthetic office floor of `seed` as a building named `name`.
+SimulationBuilding OfficeBuilding(std::uint32_t seed, const std::string& name = "office",
+                                  const OfficeOptions& office = {});
+
+struct SimulatedCase {
+  std::vector<OccupancyGrid> maps;  // robot1..robotK (the building's), then the foreign robot's
+  std::vector<std::string> names;   // "robot1", ...; names[i] is maps[i]'s name and file stem
+  // truth.maps[i] describes maps[i] (file "<name>.yaml"); truth.overlaps lists every pair of maps
+  // of one building (a before b), zero overlaps included.
+  GroundTruth truth;
+  // Each robot's path in its building's frame (the true poses at which it scanned), for tests
+  // and pictures; paths[i] belongs to maps[i].
+  std::vector<std::vector<Pose2>> paths;
+};
+
+// Simulates options.robots robots in `building` and, with `foreign`, one more robot (named
+// robot<K+1>, building foreign->name) that explored `foreign` instead: it overlaps no other map
+// and must stay unmerged. Deterministic for options.seed (robots run in parallel, each from its
+// own seeded stream). Throws fleetmerge::Error for invalid options (ValidateSimulationOptions),
+// a building without room for a robot (no free cell with the clearance), or a list of
+// resolutions whose length fits neither 1 nor the number of robots (foreign one included).
+SimulatedCase SimulateFleet(const SimulationBuilding& building, const SimulationOptions& options,
+                            const std::optional<SimulationBuilding>& foreign = std::nullopt);
+
+// Number of building cells known in both maps: cell c of `building_geometry` counts when its
+// centre, mapped into map a's frame by T_building_a^-1 (and into b's by T_building_b^-1), falls
+// on a known cell of a (and of b). This is truth.yaml's `cells`; the masks are the per-map
+// "known" masks on the building grid (CV_8U, 255 = known) that it intersects.
+cv::Mat1b KnownMaskInBuilding(const GridGeometry& building_geometry, const OccupancyGrid& map,
+                              const Pose2& T_building_map);
+
+}  // namespace fleetmerge
