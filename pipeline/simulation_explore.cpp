@@ -90,7 +90,6 @@ std::vector<Eigen::Array2i> ChooseStarts(const cv::Mat1b& traversable, int count
                 " robots (lower the clearance or use another map)");
   }
   std::vector<Eigen::Array2i> starts;
-  std::vector<int> distance, parent;
   while (static_cast<int>(starts.size()) < count) {
     if (!spread_out || starts.empty()) {
       const Eigen::Array2i cell = cells[rng.UniformInt(0, static_cast<int>(cells.size()) - 1)];
@@ -99,12 +98,14 @@ std::vector<Eigen::Array2i> ChooseStarts(const cv::Mat1b& traversable, int count
       if (!taken) starts.push_back(cell);
       continue;
     }
-    int farthest = -1, farthest_distance = -1;
-    BreadthFirst(traversable, starts, distance, parent, [&](int index, int d) {
-      if (d > farthest_distance) farthest = index, farthest_distance = d;
-      return true;
-    });
-    starts.emplace_back(farthest % traversable.cols, farthest / traversable.cols);
+    // Straight-line distance to the nearest start so far (0 at the starts), over the grid.
+    cv::Mat1b not_start(traversable.size(), 255);
+    for (const auto& s : starts) not_start(s.y(), s.x()) = 0;
+    cv::Mat1f distance_to_starts;
+    cv::distanceTransform(not_start, distance_to_starts, cv::DIST_L2, cv::DIST_MASK_PRECISE);
+    cv::Point farthest;
+    cv::minMaxLoc(distance_to_starts, nullptr, nullptr, nullptr, &farthest, traversable);
+    starts.emplace_back(farthest.x, farthest.y);
   }
   return starts;
 }

@@ -21,8 +21,10 @@ namespace fleetmerge {
 cv::Mat1b TraversableCells(const OccupancyGrid& building, double clearance_m);
 
 // `count` distinct start cells among the traversable ones: uniformly random, or with
-// `spread_out` by farthest-point sampling (each next start the cell farthest, along paths, from
-// the starts so far). Throws fleetmerge::Error if there are fewer traversable cells than robots.
+// `spread_out` by farthest-point sampling (the first at random, each next one the traversable
+// cell farthest in a straight line from the starts so far, so that the territories below are
+// compact rather than rooms behind one wall). Throws fleetmerge::Error if there are fewer
+// traversable cells than robots.
 std::vector<Eigen::Array2i> ChooseStarts(const cv::Mat1b& traversable, int count, bool spread_out,
                                          PortableRng& rng);
 

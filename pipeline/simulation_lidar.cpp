@@ -12,6 +12,11 @@ LidarScan CastScan(const OccupancyGrid& building, const Pose2& T_building_sensor
   const Eigen::Vector2d origin_cells = T_grid_sensor.translation_m() / r;
   const double range_cells = options.range_m / r;
 
+  const int width = building.width(), height = building.height();
+  const std::uint8_t* cells = building.cells().ptr<std::uint8_t>(0);
+  const std::size_t step = building.cells().step1();
+  std::uint8_t* seen_cells = seen != nullptr ? seen->ptr<std::uint8_t>(0) : nullptr;
+  const std::size_t seen_step = seen != nullptr ? seen->step1() : 0;
   LidarScan scan;
   scan.first_angle_rad = 0.0;
   scan.angle_step_rad = 2.0 * M_PI / options.beams;
@@ -23,15 +28,18 @@ LidarScan CastScan(const OccupancyGrid& building, const Pose2& T_building_sensor
         origin_cells + range_cells * Eigen::Vector2d(std::cos(angle), std::sin(angle));
     double stop_cells = range_cells;
     bool hit = false;
-    TraverseSegment(origin_cells, end, [&](const Eigen::Array2i& cell, double t_enter) {
-      const CellState state = building.StateOrUnknown(cell);
+    TraverseSegment(origin_cells, end, [&](int i, int j, double t_enter) {
+      const CellState state = static_cast<unsigned>(i) < static_cast<unsigned>(width) &&
+                                      static_cast<unsigned>(j) < static_cast<unsigned>(height)
+                                  ? static_cast<CellState>(cells[j * step + i])
+                                  : CellState::kUnknown;
       if (state == CellState::kFree) {
-        if (seen != nullptr) (*seen)(cell.y(), cell.x()) = 255;
+        if (seen_cells != nullptr) seen_cells[j * seen_step + i] = 255;
         return true;
       }
       stop_cells = t_enter;
       hit = state == CellState::kOccupied;
-      if (hit && seen != nullptr) (*seen)(cell.y(), cell.x()) = 255;
+      if (hit && seen_cells != nullptr) seen_cells[j * seen_step + i] = 255;
       return false;
     });
     double range_m = stop_cells * r;

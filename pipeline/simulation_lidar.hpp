@@ -20,38 +20,38 @@
 namespace fleetmerge {
 
 // Visits the cells that the segment from p0 to p1 crosses, p0's cell first; points are in cell
-// units of a grid frame (cell (i, j) spans [i, i+1) x [j, j+1)). visit(cell, t_enter) gets the
+// units of a grid frame (cell (i, j) spans [i, i+1) x [j, j+1)). visit(i, j, t_enter) gets the
 // distance from p0 (in cells) at which the segment enters the cell (0 for p0's cell) and returns
-// false to stop early.
+// false to stop early. Plain ints and doubles in the loop: it is the simulator's inner loop.
 template <typename Visit>
 void TraverseSegment(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, Visit&& visit) {
-  const Eigen::Vector2d delta = p1 - p0;
-  const double length = delta.norm();
-  Eigen::Array2i cell(static_cast<int>(std::floor(p0.x())), static_cast<int>(std::floor(p0.y())));
-  const Eigen::Array2i last(static_cast<int>(std::floor(p1.x())),
-                            static_cast<int>(std::floor(p1.y())));
-  if (!visit(cell, 0.0) || length == 0.0) return;
-  const Eigen::Vector2d dir = delta / length;
+  const double dx = p1.x() - p0.x(), dy = p1.y() - p0.y();
+  const double length = std::sqrt(dx * dx + dy * dy);
+  int i = static_cast<int>(std::floor(p0.x())), j = static_cast<int>(std::floor(p0.y()));
+  const int last_i = static_cast<int>(std::floor(p1.x()));
+  const int last_j = static_cast<int>(std::floor(p1.y()));
+  if (!visit(i, j, 0.0) || length == 0.0) return;
   constexpr double kInf = std::numeric_limits<double>::infinity();
-  int step[2];
-  double t_max[2], t_delta[2];  // distance to the next boundary per axis; between boundaries
-  for (int a = 0; a < 2; ++a) {
-    step[a] = dir[a] > 0 ? 1 : -1;
-    if (dir[a] == 0.0) {
-      t_max[a] = t_delta[a] = kInf;
-      continue;
+  const int step_i = dx > 0 ? 1 : -1, step_j = dy > 0 ? 1 : -1;
+  // Distance along the segment to the next vertical (i) and horizontal (j) cell boundary, and
+  // between two boundaries of each kind.
+  const double delta_i = dx == 0.0 ? kInf : std::abs(length / dx);
+  const double delta_j = dy == 0.0 ? kInf : std::abs(length / dy);
+  double next_i = dx == 0.0 ? kInf : ((dx > 0 ? i + 1.0 : double(i)) - p0.x()) * (length / dx);
+  double next_j = dy == 0.0 ? kInf : ((dy > 0 ? j + 1.0 : double(j)) - p0.y()) * (length / dy);
+  while (i != last_i || j != last_j) {
+    double t_enter = 0.0;
+    if (next_i < next_j) {
+      t_enter = next_i;
+      i += step_i;
+      next_i += delta_i;
+    } else {
+      t_enter = next_j;
+      j += step_j;
+      next_j += delta_j;
     }
-    const double boundary = dir[a] > 0 ? std::floor(p0[a]) + 1.0 : std::floor(p0[a]);
-    t_max[a] = (boundary - p0[a]) / dir[a];
-    t_delta[a] = std::abs(1.0 / dir[a]);
-  }
-  while (!(cell == last).all()) {
-    const int a = t_max[0] < t_max[1] ? 0 : 1;
-    const double t_enter = t_max[a];
     if (t_enter > length) return;  // rounding: p1 lies on a boundary
-    cell[a] += step[a];
-    t_max[a] += t_delta[a];
-    if (!visit(cell, t_enter)) return;
+    if (!visit(i, j, t_enter)) return;
   }
 }
 

@@ -18,6 +18,10 @@ void RobotMapper::Integrate(const LidarScan& scan, const Pose2& T_map_sensor) {
   // A return is pushed a quarter cell past the surface so that it lands in the wall rather than
   // in the free cell in front of it when the surface lies on a cell boundary of this grid.
   const double push_cells = 0.25;
+  const int width = geometry_.width(), height = geometry_.height();
+  int* hits = hits_.ptr<int>(0);
+  int* visits = visits_.ptr<int>(0);
+  const std::size_t step = hits_.step1();
   for (std::size_t k = 0; k < scan.ranges_m.size(); ++k) {
     const double angle = T_grid_sensor.yaw_rad() + scan.first_angle_rad +
                          static_cast<double>(k) * scan.angle_step_rad;
@@ -25,12 +29,15 @@ void RobotMapper::Integrate(const LidarScan& scan, const Pose2& T_map_sensor) {
     const double length_cells = scan.ranges_m[k] / r + (hit ? push_cells : 0.0);
     const Eigen::Vector2d end =
         origin_cells + length_cells * Eigen::Vector2d(std::cos(angle), std::sin(angle));
-    const Eigen::Array2i end_cell(static_cast<int>(std::floor(end.x())),
-                                  static_cast<int>(std::floor(end.y())));
-    TraverseSegment(origin_cells, end, [&](const Eigen::Array2i& cell, double) {
-      if (!geometry_.Contains(cell)) return false;
-      ++visits_(cell.y(), cell.x());
-      if (hit && (cell == end_cell).all()) ++hits_(cell.y(), cell.x());
+    const int end_i = static_cast<int>(std::floor(end.x()));
+    const int end_j = static_cast<int>(std::floor(end.y()));
+    TraverseSegment(origin_cells, end, [&](int i, int j, double) {
+      if (static_cast<unsigned>(i) >= static_cast<unsigned>(width) ||
+          static_cast<unsigned>(j) >= static_cast<unsigned>(height)) {
+        return false;
+      }
+      ++visits[j * step + i];
+      if (hit && i == end_i && j == end_j) ++hits[j * step + i];
       return true;
     });
   }

@@ -1,0 +1,95 @@
+// `fleetmerge simulate` through the executable: the case it writes merges with `fleetmerge
+// merge` (all robots of the building in one component, the foreign one alone), and bad options
+// or an unreadable building map fail with a message.
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "tests/support/run_command.hpp"
+#include "tests/support/shared_data.hpp"
+
+namespace fleetmerge {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::ShellQuote;
+
+testing::CommandResult Fleetmerge(const std::string& args) {
+  return testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " " + args);
+}
+
+std::map<std::string, int> ComponentOfEachMap(const fs::path& report_json) {
+  std::ifstream in(report_json);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  std::map<std::string, int> component;
+  for (const auto& m : report.at("maps")) component[m.at("name")] = m.at("component").get<int>();
+  return component;
+}
+
+// The default case: its job runs and puts all four robots into one component.
+TEST(SimulateCli, DefaultCaseMerges) {
+  const fs::path dir = testing::MakeTempDir("simulate_cli");
+  const auto run = Fleetmerge("simulate " + ShellQuote(dir));
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  EXPECT_NE(run.out.find("truth.yaml"), std::string::npos) << run.out;
+  for (const char* f : {"robot1.yaml", "robot1.pgm", "robot4.pgm", "truth.yaml", "job.yaml"}) {
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  }
+  const auto merge = Fleetmerge("merge --quiet " + ShellQuote(dir / "job.yaml"));
+  ASSERT_EQ(merge.exit_code, 0) << merge.both();
+  const auto component = ComponentOfEachMap(dir / "merged" / "report.json");
+  ASSERT_EQ(component.size(), 4u);
+  for (const char* robot : {"robot2", "robot3", "robot4"}) {
+    EXPECT_EQ(component.at(robot), component.at("robot1")) << robot;
+  }
+}
+
+TEST(SimulateCli, ResolutionsForeignBuildingAndLittleOverlap) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const fs::path dir = testing::MakeTempDir("simulate_cli_options");
+  const fs::path intel = *testing::SharedMapsDir() / "intel_lab.yaml";
+  const auto run = Fleetmerge("simulate " + ShellQuote(dir) + " --robots 3 --seed 4 --foreign " +
+                              ShellQuote(intel) + " --resolutions 0.05,0.05,0.1,0.05 " +
+                              "--little-overlap --path-length 20 --beams 180 --range 6");
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  EXPECT_EQ(YAML::LoadFile((dir / "robot3.yaml").string())["resolution"].as<double>(), 0.1);
+  const YAML::Node truth = YAML::LoadFile((dir / "truth.yaml").string());
+  ASSERT_EQ(truth["maps"].size(), 4u);
+  EXPECT_EQ(truth["maps"][3]["name"].as<std::string>(), "robot4");
+  EXPECT_EQ(truth["maps"][3]["building"].as<std::string>(), "foreign");
+  EXPECT_EQ(truth["buildings"][1]["source"].as<std::string>(), intel.string());
+  EXPECT_EQ(truth["overlaps"].size(), 3u);
+}
+
+TEST(SimulateCli, BadInputFailsWithAMessage) {
+  const fs::path dir = testing::MakeTempDir("simulate_cli_bad");
+  const auto missing = Fleetmerge("simulate " + ShellQuote(dir / "out") + " --building " +
+                                  ShellQuote(dir / "nowhere.yaml"));
+  EXPECT_EQ(missing.exit_code, 1) << missing.both();
+  EXPECT_NE(missing.err.find("nowhere.yaml"), std::string::npos) << missing.err;
+  EXPECT_FALSE(fs::exists(dir / "out" / "job.yaml"));
+
+  const auto resolutions =
+      Fleetmerge("simulate " + ShellQuote(dir / "out") + " --robots 3 --resolutions 0.05,0.1");
+  EXPECT_EQ(resolutions.exit_code, 1) << resolutions.both();
+  EXPECT_NE(resolutions.err.find("resolutions"), std::string::npos) << resolutions.err;
+
+  const auto same_office =
+      Fleetmerge("simulate " + ShellQuote(dir / "out") + " --seed 3 --foreign-office-seed 3");
+  EXPECT_EQ(same_office.exit_code, 1) << same_office.both();
+
+  for (const char* bad : {"--robots 0", "--range -1", "--beams abc", "--resolutions 0",
+                          "--building a.yaml --office-seed 2"}) {
+    const auto run = Fleetmerge("simulate " + ShellQuote(dir / "out") + " " + bad);
+    EXPECT_NE(run.exit_code, 0) << bad;
+    EXPECT_FALSE(run.err.empty()) << bad;
+  }
+  EXPECT_FALSE(fs::exists(dir / "out" / "job.yaml"));
+}
+
+}  // namespace
+}  // namespace fleetmerge
