@@ -60,31 +60,22 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommand& c) {
   sim->add_option("--beams", o.lidar.beams, "lidar beams over 360 degrees")
       ->check(CLI::Range(3, 100000))
       ->capture_default_str();
-  sim->add_option("--range", o.lidar.range_m, "lidar maximum range, m")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  sim->add_option("--range", o.lidar.range_m, "lidar maximum range, m")->capture_default_str();
   sim->add_option("--range-noise", o.lidar.range_noise_m, "std. dev. of range noise, m")
-      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sim->add_option("--pose-noise", o.pose_noise.xy_m, "per-scan pose jitter (std. dev.), m")
-      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sim->add_option("--pose-noise-yaw", o.pose_noise.yaw_deg, "per-scan yaw jitter, deg")
-      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sim->add_option("--drift", o.pose_noise.drift_xy_m,
                   "position drift (random walk), std. dev. after 1 m of path, m")
-      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sim->add_option("--drift-yaw", o.pose_noise.drift_yaw_deg,
                   "heading drift (random walk), std. dev. after 1 m of path, deg")
-      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sim->add_option("--path-length", o.path_length_m, "exploration budget per robot, m")
-      ->check(CLI::PositiveNumber)
       ->capture_default_str();
   sim->add_option("--clearance", o.clearance_m, "robot radius: distance kept from walls, m")
-      ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sim->add_option("--resolutions", o.resolutions_m,
                   "cell size of the robots' maps, m: one value, or one per robot (foreign last)")
@@ -99,7 +90,7 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommand& c) {
                   "add a robot that explored the synthetic office of this seed")
       ->excludes(foreign);
   sim->add_option("--threads", o.threads, "robots simulated in parallel (0: all cores)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 1024));
   return sim;
 }
 

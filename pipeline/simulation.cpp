@@ -45,9 +45,10 @@ std::vector<RobotPlan> PlanRobots(const SimulationBuilding& building,
   const int total = options.robots + (foreign ? 1 : 0);
   const auto& res = options.resolutions_m;
   if (res.size() != 1 && static_cast<int>(res.size()) != total) {
-    throw Error("simulation option resolutions: expected one value or one per robot (" +
-                std::to_string(total) + (foreign ? ", the foreign robot last" : "") + "), got " +
-                std::to_string(res.size()));
+    throw Error(
+        "simulation option resolutions_m (--resolutions): expected one value or one per robot (" +
+        std::to_string(total) + (foreign ? ", the foreign robot last" : "") + "), got " +
+        std::to_string(res.size()));
   }
   std::vector<RobotPlan> plans(total);
   const cv::Mat1b traversable = TraversableCells(building.grid, options.clearance_m);
@@ -78,28 +79,37 @@ std::vector<RobotPlan> PlanRobots(const SimulationBuilding& building,
 }  // namespace
 
 void ValidateSimulationOptions(const SimulationOptions& o) {
-  Require(o.robots >= 1 && o.robots <= 100, "robots", "an integer in [1, 100]", o.robots);
-  Require(o.lidar.beams >= 3 && o.lidar.beams <= 100000, "beams", "an integer in [3, 100000]",
-          o.lidar.beams);
-  Require(Finite(o.lidar.range_m) && o.lidar.range_m > 0.0, "range", "a number > 0",
-          o.lidar.range_m);
+  // Each option is named as in the struct and, where it has one, as on the command line.
+  Require(o.robots >= 1 && o.robots <= 100, "robots (--robots)", "an integer in [1, 100]",
+          o.robots);
+  Require(o.lidar.beams >= 3 && o.lidar.beams <= 100000, "lidar.beams (--beams)",
+          "an integer in [3, 100000]", o.lidar.beams);
+  const std::pair<const char*, double> positive[] = {
+      {"lidar.range_m (--range)", o.lidar.range_m},
+      {"path_length_m (--path-length)", o.path_length_m},
+      {"scan_spacing_m", o.scan_spacing_m}};
+  for (const auto& [name, value] : positive) {
+    Require(Finite(value) && value > 0.0, name, "a finite number > 0", value);
+  }
   const std::pair<const char*, double> non_negative[] = {
-      {"range_noise", o.lidar.range_noise_m},    {"pose_noise_xy", o.pose_noise.xy_m},
-      {"pose_noise_yaw", o.pose_noise.yaw_deg},  {"drift_xy", o.pose_noise.drift_xy_m},
-      {"drift_yaw", o.pose_noise.drift_yaw_deg}, {"clearance", o.clearance_m},
-      {"goal_spread", o.goal_spread_m},          {"max_frame_offset", o.max_frame_offset_m}};
+      {"lidar.range_noise_m (--range-noise)", o.lidar.range_noise_m},
+      {"pose_noise.xy_m (--pose-noise)", o.pose_noise.xy_m},
+      {"pose_noise.yaw_deg (--pose-noise-yaw)", o.pose_noise.yaw_deg},
+      {"pose_noise.drift_xy_m (--drift)", o.pose_noise.drift_xy_m},
+      {"pose_noise.drift_yaw_deg (--drift-yaw)", o.pose_noise.drift_yaw_deg},
+      {"clearance_m (--clearance)", o.clearance_m},
+      {"goal_spread_m", o.goal_spread_m},
+      {"max_frame_offset_m", o.max_frame_offset_m}};
   for (const auto& [name, value] : non_negative) {
     Require(Finite(value) && value >= 0.0, name, "a finite number >= 0", value);
   }
-  Require(Finite(o.path_length_m) && o.path_length_m > 0.0, "path_length", "a number > 0",
-          o.path_length_m);
-  Require(Finite(o.scan_spacing_m) && o.scan_spacing_m > 0.0, "scan_spacing", "a number > 0",
-          o.scan_spacing_m);
   Require(o.occupied_ratio > 0.0 && o.occupied_ratio <= 1.0, "occupied_ratio", "a number in (0, 1]",
           o.occupied_ratio);
-  Require(!o.resolutions_m.empty(), "resolutions", "at least one value", 0.0);
+  Require(o.threads >= 0, "threads (--threads)", "an integer >= 0", o.threads);
+  Require(!o.resolutions_m.empty(), "resolutions_m (--resolutions)", "at least one value", 0.0);
   for (const double r : o.resolutions_m) {
-    Require(Finite(r) && r >= 0.005 && r <= 1.0, "resolutions", "cell sizes in [0.005, 1] m", r);
+    Require(Finite(r) && r >= 0.005 && r <= 1.0, "resolutions_m (--resolutions)",
+            "cell sizes in [0.005, 1] m", r);
   }
 }
 

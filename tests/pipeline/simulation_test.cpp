@@ -161,6 +161,40 @@ TEST(SimulateFleet, NoiseFreeMapsShowTheBuildingAtTheTruePoses) {
   }
 }
 
+// Share of all robots' wall cells within one cell of a building wall, under the true poses.
+double WallsNearWalls(const SimulatedCase& c, const OccupancyGrid& building) {
+  int cells = 0, near = 0;
+  for (std::size_t k = 0; k < c.maps.size(); ++k) {
+    const Landing walls =
+        LandCells(c.maps[k], c.truth.maps[k].T_building_map, building, CellState::kOccupied, 1);
+    cells += walls.cells;
+    near += walls.near;
+  }
+  return double(near) / cells;
+}
+
+// Noise blurs the maps a little; drift bends them: walls drawn at drifted poses leave the
+// building's walls, and more the stronger the drift.
+TEST(SimulateFleet, PoseNoiseAndDriftDisplaceTheWalls) {
+  SimulationOptions jitter;  // the defaults: range and per-scan pose noise, no drift
+  SimulationOptions drift = jitter;
+  drift.pose_noise.drift_xy_m = 0.01;
+  drift.pose_noise.drift_yaw_deg = 0.2;
+  SimulationOptions strong = drift;
+  strong.pose_noise.drift_yaw_deg = 0.5;
+  const double near_jitter = WallsNearWalls(SimulateFleet(Office(), jitter), Office().grid);
+  const double near_drift = WallsNearWalls(SimulateFleet(Office(), drift), Office().grid);
+  const double near_strong = WallsNearWalls(SimulateFleet(Office(), strong), Office().grid);
+  std::printf(
+      "[ noise ] walls within 1 cell of a wall: default noise %.4f, drift 0.2 deg/sqrt(m) "
+      "%.3f, 0.5 deg/sqrt(m) %.3f\n",
+      near_jitter, near_drift, near_strong);
+  EXPECT_GT(near_jitter, 0.95);
+  EXPECT_LT(near_jitter, 1.0) << "the default noise is on";
+  EXPECT_LT(near_drift, near_jitter);
+  EXPECT_LT(near_strong, near_drift);
+}
+
 TEST(SimulateFleet, PathsKeepTheClearanceAndStayInTheBuilding) {
   const SimulatedCase& c = NoiseFreeCase();
   const OccupancyGrid& building = Office().grid;
@@ -334,7 +368,7 @@ TEST(SimulateFleet, RejectsBadOptionsNamingThem) {
   EXPECT_NE(message(o).find("robots"), std::string::npos) << message(o);
   o = {};
   o.lidar.range_noise_m = -1.0;
-  EXPECT_NE(message(o).find("range_noise"), std::string::npos) << message(o);
+  EXPECT_NE(message(o).find("--range-noise"), std::string::npos) << message(o);
   o = {};
   o.lidar.range_m = std::nan("");
   EXPECT_NE(message(o).find("range"), std::string::npos) << message(o);
