@@ -53,10 +53,10 @@ struct SimulatedCase {
 SimulatedCase SimulateFleet(const SimulationBuilding& building, const SimulationOptions& options,
                             const std::optional<SimulationBuilding>& foreign = std::nullopt);
 
-// Number of building cells known in both maps: cell c of `building_geometry` counts when its
-// centre, mapped into map a's frame by T_building_a^-1 (and into b's by T_building_b^-1), falls
-// on a known cell of a (and of b). This is truth.yaml's `cells`; the masks are the per-map
-// "known" masks on the building grid (CV_8U, 255 = known) that it intersects.
+// The building cells a map knows: 255 where the centre of a cell of `building_geometry`,
+// mapped into the map's frame by T_building_map^-1, falls on a known (free or occupied) cell of
+// `map`, else 0. truth.yaml's overlap `cells` of a pair is the number of cells set in both
+// masks, and `share` divides it by the smaller mask's count.
 cv::Mat1b KnownMaskInBuilding(const GridGeometry& building_geometry, const OccupancyGrid& map,
                               const Pose2& T_building_map);
 
