@@ -56,22 +56,26 @@ std::vector<RobotPlan> PlanRobots(const SimulationBuilding& building,
       ChooseStarts(traversable, options.robots, options.little_overlap, rng);
   cv::Mat1i territory;
   if (options.little_overlap) territory = Territories(traversable, starts);
+  // The building's robots draw everything before the foreign one, so adding a foreign robot
+  // leaves their maps unchanged.
+  auto draw_frame_and_seed = [&](RobotPlan& plan, int k) {
+    plan.T_building_map = RandomFrame(options.max_frame_offset_m, rng);
+    plan.resolution_m = res.size() == 1 ? res.front() : res[k];
+    plan.seed = rng.NextSeed();
+  };
   for (int k = 0; k < options.robots; ++k) {
     RobotPlan& plan = plans[k];
     plan.building = &building;
     plan.walkable = options.little_overlap ? cv::Mat1b(territory == k) : traversable;
     plan.start = starts[k];
+    draw_frame_and_seed(plan, k);
   }
   if (foreign) {
     RobotPlan& plan = plans.back();
     plan.building = &*foreign;
     plan.walkable = TraversableCells(foreign->grid, options.clearance_m);
     plan.start = ChooseStarts(plan.walkable, 1, false, rng).front();
-  }
-  for (int k = 0; k < total; ++k) {
-    plans[k].T_building_map = RandomFrame(options.max_frame_offset_m, rng);
-    plans[k].resolution_m = res.size() == 1 ? res.front() : res[k];
-    plans[k].seed = rng.NextSeed();
+    draw_frame_and_seed(plan, total - 1);
   }
   return plans;
 }

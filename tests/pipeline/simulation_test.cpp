@@ -302,6 +302,13 @@ TEST(SimulateFleet, ForeignRobotMapsTheOtherBuildingAndOverlapsNothing) {
   const Landing in_office = LandCells(c.maps.back(), T, Office().grid, CellState::kOccupied, 1);
   EXPECT_EQ(in_foreign.near, in_foreign.cells);
   EXPECT_LT(in_office.near, 0.8 * in_office.cells);
+  // Adding the foreign robot leaves the building's robots as they were.
+  const SimulatedCase without = SimulateFleet(Office(), o);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(cv::countNonZero(without.maps[k].cells() != c.maps[k].cells()), 0) << k;
+    EXPECT_EQ(without.truth.maps[k].T_building_map.translation_m(),
+              c.truth.maps[k].T_building_map.translation_m());
+  }
 }
 
 TEST(SimulateFleet, HonoursAResolutionPerRobot) {
