@@ -82,21 +82,34 @@ std::vector<CellHypothesis> GenerateHypotheses(const OccupancyGrid& a, const Occ
     const auto translations = correlation ? correlation->Find(b_rotated) : spectra->Find(b_rotated);
     for (const auto& t : translations) {
       const Pose2 T_ga_gb(t.t_cells, yaw);
-      // Ranking pass on every other row and column: 4x cheaper, same order in practice.
-      candidates.push_back({T_ga_gb, CountAgreement(a, b, T_ga_gb, 2, &b_spans).omega()});
+      // Ranking pass on every other row and column: 4x cheaper, same order in practice (the
+      // overlap estimate scales by the 4 cells each visited one stands for).
+      const Agreement agreement = CountAgreement(a, b, T_ga_gb, 2, &b_spans);
+      candidates.push_back(
+          {T_ga_gb, agreement.omega(), 4 * (agreement.agree + agreement.disagree)});
     }
   }
-  std::sort(candidates.begin(), candidates.end(),
-            [](const auto& l, const auto& r) { return l.omega > r.omega; });
+  SortHypotheses(candidates, options.min_overlap_cells);
   candidates = RemoveDuplicates(std::move(candidates), options);
   if (static_cast<int>(candidates.size()) > options.max_hypotheses) {
     candidates.resize(std::max(options.max_hypotheses, 0));
   }
-  for (auto& c : candidates)
-    c.omega = CountAgreement(a, b, c.T_ga_gb, 1, &b_spans).omega();  // Eq. (1)
-  std::stable_sort(candidates.begin(), candidates.end(),
-                   [](const auto& l, const auto& r) { return l.omega > r.omega; });
+  for (auto& c : candidates) {
+    const Agreement agreement = CountAgreement(a, b, c.T_ga_gb, 1, &b_spans);
+    c.omega = agreement.omega();  // Eq. (1)
+    c.overlap_cells = agreement.agree + agreement.disagree;
+  }
+  SortHypotheses(candidates, options.min_overlap_cells);
   return candidates;
+}
+
+void SortHypotheses(std::vector<CellHypothesis>& hypotheses, std::int64_t min_overlap_cells) {
+  std::stable_sort(hypotheses.begin(), hypotheses.end(), [&](const auto& l, const auto& r) {
+    const bool l_enough = l.overlap_cells >= min_overlap_cells;
+    const bool r_enough = r.overlap_cells >= min_overlap_cells;
+    if (l_enough != r_enough) return l_enough;
+    return l.omega > r.omega;
+  });
 }
 
 std::vector<CellHypothesis> RemoveDuplicates(std::vector<CellHypothesis> sorted,

@@ -9,6 +9,7 @@
 // All poses here are T_ga_gb: b's grid frame in a's grid frame, in CELL units.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "core/hough_spectrum.hpp"
@@ -29,12 +30,21 @@ struct HypothesisOptions {
   // Candidates closer than this are one hypothesis (the better omega is kept).
   double duplicate_yaw_rad = 2.0 * M_PI / 180.0;
   double duplicate_translation_cells = 3.0;
+  // A hypothesis whose overlap (cells known in both maps) is below this ranks below every one
+  // that reaches it. Omega (Eq. 1) only counts the overlap, so a transform that barely touches
+  // the other map scores ~1 however wrong it is; seen on simulated robots whose maps overlap by
+  // 90000 cells, where such slivers outranked the true pose.
+  std::int64_t min_overlap_cells = 2000;
 };
 
 struct CellHypothesis {
   Pose2 T_ga_gb;  // cell units
   double omega = 0.0;
+  std::int64_t overlap_cells = 0;  // agr + dis of Eq. (1): cells known in both maps under T
 };
+
+// Best first: hypotheses reaching `min_overlap_cells` before the others, then by omega (stable).
+void SortHypotheses(std::vector<CellHypothesis>& hypotheses, std::int64_t min_overlap_cells);
 
 // Throws fleetmerge::Error if the grids' resolutions differ (resample first). Returns an empty
 // list when either map has no occupied cell.

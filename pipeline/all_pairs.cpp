@@ -3,7 +3,6 @@
 #include <atomic>
 #include <mutex>
 
-#include "core/acceptance_index.hpp"
 #include "core/hypothesis_generator.hpp"
 #include "core/wall_agreement.hpp"
 #include "pipeline/parallel.hpp"
@@ -18,16 +17,14 @@ PairOutcome ComputePair(const std::vector<OccupancyGrid>& maps, int a, int b,
   outcome.b = b;
   const OccupancyGrid& ga = maps[a];
   const OccupancyGrid& gb = maps[b];
-  for (const CellHypothesis& h : RankedCellHypotheses(ga, gb, options)) {
+  const std::vector<CellHypothesis> ranked = RankedCellHypotheses(ga, gb, options);
+  for (const CellHypothesis& h : ranked) {
     outcome.hypotheses.push_back(
         {MapPoseFromCellPose(ga.geometry(), gb.geometry(), h.T_ga_gb), h.omega});
   }
-  if (!outcome.hypotheses.empty()) {
-    const Pose2 T_ga_gb =
-        CellPoseFromMapPose(ga.geometry(), gb.geometry(), outcome.hypotheses.front().T_a_b);
-    const Agreement agreement = CountAgreement(ga, gb, T_ga_gb);
-    outcome.overlap_cells = agreement.agree + agreement.disagree;
-    outcome.wall_agreement = SymmetricWallAgreement(ga, gb, T_ga_gb);
+  if (!ranked.empty()) {
+    outcome.overlap_cells = ranked.front().overlap_cells;
+    outcome.wall_agreement = SymmetricWallAgreement(ga, gb, ranked.front().T_ga_gb);
   }
   return outcome;
 }

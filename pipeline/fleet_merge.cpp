@@ -55,7 +55,10 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   result.maps = AtOneResolution(maps, result.resolution_m);
 
   auto start = std::chrono::steady_clock::now();
-  result.pairs = ComputeAllPairs(result.maps, options.pair, options.threads, progress);
+  // Hypotheses are ranked with the overlap an edge needs (HypothesisOptions::min_overlap_cells).
+  PairOptions pair_options = options.pair;
+  pair_options.hypotheses.min_overlap_cells = options.min_overlap_cells;
+  result.pairs = ComputeAllPairs(result.maps, pair_options, options.threads, progress);
   result.timing.pairs_ms = MillisecondsSince(start);
 
   start = std::chrono::steady_clock::now();

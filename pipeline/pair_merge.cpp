@@ -8,13 +8,6 @@
 namespace fleetmerge {
 namespace {
 
-void SortByOmega(std::vector<CellHypothesis>& hypotheses) {
-  std::stable_sort(hypotheses.begin(), hypotheses.end(),
-                   [](const auto& l, const auto& r) { return l.omega > r.omega; });
-}
-
-// Refines each hypothesis and keeps the refined pose unless omega says it got worse: the
-// alignment cost and omega can disagree when the maps barely overlap.
 Pose2 ScaleTranslation(const Pose2& T, double factor) {
   return Pose2(T.translation_m() * factor, T.yaw_rad());
 }
@@ -43,16 +36,18 @@ struct PairContext {
 // Refines each hypothesis and keeps the refined pose unless omega (at full resolution) says it
 // got worse: the alignment cost and omega can disagree when the maps barely overlap.
 void RefineAll(const PairContext& pair, std::vector<CellHypothesis>& hypotheses,
-               const LocalAlignmentOptions& options) {
+               const LocalAlignmentOptions& options, std::int64_t min_overlap_cells) {
   for (auto& h : hypotheses) {
     const LocalAlignmentResult r = RefineAlignment(
         pair.target_a, pair.target_b, ScaleTranslation(h.T_ga_gb, 1.0 / pair.scale), options);
     if (!r.converged) continue;
     const Pose2 T_ga_gb = ScaleTranslation(r.T_ga_gb, pair.scale);
-    const double omega = CountAgreement(pair.a, pair.b, T_ga_gb, 1, &pair.b_spans).omega();
-    if (omega >= h.omega - 0.01) h = {T_ga_gb, omega};  // Eq. (1)
+    const Agreement agreement = CountAgreement(pair.a, pair.b, T_ga_gb, 1, &pair.b_spans);
+    if (agreement.omega() >= h.omega - 0.01) {  // Eq. (1)
+      h = {T_ga_gb, agreement.omega(), agreement.agree + agreement.disagree};
+    }
   }
-  SortByOmega(hypotheses);
+  SortHypotheses(hypotheses, min_overlap_cells);
 }
 
 // The coarse stage's grid scale: its basin (refine_truncation_cells coarse cells) must bridge
@@ -77,12 +72,13 @@ std::vector<CellHypothesis> RankedCellHypotheses(const OccupancyGrid& a, const O
     // resolution.
     const int scale = CoarseScale(a, b, options);
     RefineAll(PairContext(a, b, scale, options.refine_truncation_cells), hypotheses,
-              options.quick_refine);
+              options.quick_refine, options.hypotheses.min_overlap_cells);
     const std::size_t best = std::min<std::size_t>(options.final_refine_count, hypotheses.size());
     std::vector<CellHypothesis> head(hypotheses.begin(), hypotheses.begin() + best);
-    RefineAll(PairContext(a, b, 1, options.refine_truncation_cells), head, options.final_refine);
+    RefineAll(PairContext(a, b, 1, options.refine_truncation_cells), head, options.final_refine,
+              options.hypotheses.min_overlap_cells);
     std::copy(head.begin(), head.end(), hypotheses.begin());
-    SortByOmega(hypotheses);
+    SortHypotheses(hypotheses, options.hypotheses.min_overlap_cells);
     // Several candidates may have converged onto one pose.
     hypotheses = RemoveDuplicates(std::move(hypotheses), options.hypotheses);
   }
