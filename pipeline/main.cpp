@@ -43,6 +43,16 @@ int main(int argc, char** argv) {
                    "best omega a pair needs to become an edge")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  merge_app
+      ->add_option("--octree-band-min", merge.options.octree.band_min_m,
+                   "octrees: bottom of the floor plan's height band, metres above the floor")
+      ->check(CLI::Range(-10.0, 10.0))
+      ->capture_default_str();
+  merge_app
+      ->add_option("--octree-band-max", merge.options.octree.band_max_m,
+                   "octrees: top of the floor plan's height band, metres above the floor")
+      ->check(CLI::Range(-10.0, 10.0))
+      ->capture_default_str();
   merge_app->add_flag("--quiet", merge.quiet, "no progress output");
   AddMethodOptions(*merge_app, merge.options.pair);
 
