@@ -5,9 +5,10 @@
 // random z. Extruding a cut, re-framed floor plan equals cutting and moving the 3-D building with
 // nearest-voxel resampling, since the motion's rotation is about z only.
 //
-// The 2-D pipeline itself misses one of these 5 synthetic pairs (seed 4: a 200-cell overlap with
-// omega 1.0 outranks the true alignment, on the 2-D parts alone too); the test checks that the
-// 3-D route then gives exactly the 2-D pipeline's answer, and the truth everywhere else.
+// Should the 2-D pipeline miss a pair (it does on some synthetic offices, on the 2-D parts alone
+// too: on a 24 x 16 m office, seed 4, a 200-cell overlap with omega 1.0 outranks the true
+// alignment), the test checks that the 3-D route gives exactly the 2-D pipeline's answer; it
+// found all 5 pairs here when written.
 #include <gtest/gtest.h>
 #include <octomap/OcTree.h>
 
@@ -198,7 +199,7 @@ TEST(OctreeFleet, TwoOctreesMergeToTheirTruePosesAndOneBuilding) {
     ExpectMergedOctreeIsTheBuilding(f, *merged, 0, 0.0, {0, 1});
   }
   std::printf("[ octree ] true poses for %d of 5 synthetic pairs\n", true_poses);
-  EXPECT_GE(true_poses, 4) << "the 2-D pipeline found 4 of these 5 when this test was written";
+  EXPECT_GE(true_poses, 4) << "5 of 5 when written; one 2-D miss is tolerated (checked above)";
 }
 
 TEST(OctreeFleet, MixedJobOfA2dMapAndAnOctreeOfOneBuilding) {
