@@ -61,6 +61,8 @@ int main(int argc, char** argv) {
       "example", "Write two overlapping robot maps of a synthetic office with the true answer");
   example_app->add_option("dir", example.out_dir, "output folder")->required();
   example_app->add_option("--seed", example.seed, "random seed")->capture_default_str();
+  example_app->add_flag("--octree", example.octree,
+                        "two OctoMap octrees (.bt) of one storey, with truth.yaml and job.yaml");
 
   try {
     app.parse(argc, argv);

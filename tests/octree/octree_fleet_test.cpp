@@ -11,6 +11,7 @@
 // found all 5 pairs here when written.
 #include <gtest/gtest.h>
 #include <octomap/OcTree.h>
+#include <yaml-cpp/yaml.h>
 
 #include <cmath>
 #include <cstdio>
@@ -24,6 +25,7 @@
 #include "io/map_io.hpp"
 #include "io/octree_io.hpp"
 #include "octree/synthetic_octree.hpp"
+#include "pipeline/example_command.hpp"
 #include "pipeline/fleet_merge.hpp"
 #include "pipeline/ground_truth_pair.hpp"
 #include "pipeline/merge_command.hpp"
@@ -226,6 +228,37 @@ TEST(OctreeFleet, MixedJobOfA2dMapAndAnOctreeOfOneBuilding) {
   Fleet3d moved = f;
   moved.z_m[0] = f.z_m[1];  // the merged frame's z is the drone's
   ExpectMergedOctreeIsTheBuilding(moved, *merged, 0, 0.0, {1});
+}
+
+// `fleetmerge example DIR --octree`, then `fleetmerge merge DIR/job.yaml` and the same maps with
+// `--out` and a band given on the command line: the pose of truth.yaml both ways.
+TEST(OctreeFleet, OctreeExampleMergesToItsTruth) {
+  const fs::path dir = testing::MakeTempDir("octree_example");
+  std::ostringstream out;
+  ASSERT_EQ(RunExampleCommand(ExampleCommand{dir, 1, /*octree=*/true}, out), 0);
+  const YAML::Node truth = YAML::LoadFile((dir / "truth.yaml").string())["T_a_b"];
+  const Pose2 T_true(truth["x"].as<double>(), truth["y"].as<double>(), truth["yaw"].as<double>());
+  std::string messages;
+  ASSERT_EQ(RunMergeJobs(LoadJobFile(dir / "job.yaml"), &messages), 0) << messages;
+
+  MergeCommand command;
+  command.inputs = {dir / "robot_a.bt", dir / "robot_b.bt"};
+  command.out_dir = dir / "cli";
+  command.quiet = true;
+  command.options.octree.band_min_m = 0.5;
+  std::ostringstream cli_out, cli_err;
+  ASSERT_EQ(RunMergeCommand(command, cli_out, cli_err), 0) << cli_err.str();
+
+  for (const fs::path& report_path : {dir / "merged/report.json", dir / "cli/report.json"}) {
+    const json report = ReadJson(report_path);
+    const Pose2 T_a_b = PoseOf(report["maps"][0]).inverse() * PoseOf(report["maps"][1]);
+    EXPECT_LE(std::abs(WrapAngle(T_a_b.yaw_rad() - T_true.yaw_rad())), M_PI / 180.0) << report_path;
+    EXPECT_LE((T_a_b.translation_m() - T_true.translation_m()).norm(), 0.3) << report_path;
+    const double dz =
+        report["maps"][1]["pose"]["z"].get<double>() - report["maps"][0]["pose"]["z"].get<double>();
+    EXPECT_LE(std::abs(dz - truth["z"].as<double>()), 0.1) << report_path;
+    EXPECT_TRUE(fs::exists(report_path.parent_path() / "merged_0.bt")) << report_path;
+  }
 }
 
 TEST(OctreeFleet, JobFileErrorsNameTheFileLineAndKey) {
