@@ -12,6 +12,8 @@
 
 #include "core/error.hpp"
 #include "io/map_yaml.hpp"
+#include "io/octree_io.hpp"
+#include "io/octree_job_keys.hpp"
 #include "io/sampling_spec.hpp"
 #include "io/yaml_errors.hpp"
 #include "io/yaml_fields.hpp"
@@ -24,7 +26,7 @@ namespace {
 const std::vector<std::string> kJobKeys = {
     "name", "maps", "output", "reference", "resolution", "threads", "hypotheses_per_pair",
     "omega_threshold", "min_overlap_cells", "min_wall_agreement", "refine", "seed", "hough", "translation",
-    "pose_graph", "fusion"};
+    "pose_graph", "fusion", "octree"};
 // clang-format on
 
 SamplingOptions ReadSampling(const YamlField& field, const YamlErrors& errors) {
@@ -104,6 +106,7 @@ void ReadOptions(const YamlMapping& job, FleetOptions& options, const YamlErrors
     hypotheses.spectra_sampling.seed = seed + 1;
   }
   if (auto f = job.Find("pose_graph")) ReadPoseGraph(*f, options.pose_graph, errors);
+  if (auto f = job.Find("octree")) ReadOctreeOptions(*f, options.octree, errors);
   if (auto f = job.Find("fusion")) {
     options.fusion = ReadChoice<FusionMode>(*f,
                                             {{"log_odds", FusionMode::kLogOdds},
@@ -154,7 +157,12 @@ ListedMap ReadMap(const YamlField& entry, const fs::path& folder, const YamlErro
   listed.canonical = Canonical(listed.map.path);
   if (listed.map.name.empty()) listed.map.name = listed.map.source.stem().string();
   try {
-    ReadMapYaml(listed.map.path);  // the metadata only: a bad map stops the file before work
+    // The metadata (or an octree's header) only: a bad map stops the file before work.
+    if (IsOctreePath(listed.map.path)) {
+      CheckOctreeFile(listed.map.path);
+    } else {
+      ReadMapYaml(listed.map.path);
+    }
   } catch (const Error& e) {
     errors.Fail(entry.key, entry.line, e.what());
   }

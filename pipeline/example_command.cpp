@@ -8,11 +8,13 @@
 #include "io/atomic_file.hpp"
 #include "io/map_io.hpp"
 #include "pipeline/ground_truth_pair.hpp"
+#include "pipeline/octree_example.hpp"
 #include "pipeline/synthetic_office.hpp"
 
 namespace fleetmerge {
 
 int RunExampleCommand(const ExampleCommand& command, std::ostream& out) {
+  if (command.octree) return RunOctreeExample(command, out);
   const OccupancyGrid building = GenerateOfficeFloor(OfficeOptions{}, command.seed);
   std::mt19937 rng(command.seed);
   const double yaw_rad = std::uniform_real_distribution<double>(-M_PI, M_PI)(rng);

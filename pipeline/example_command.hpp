@@ -13,6 +13,7 @@ namespace fleetmerge {
 struct ExampleCommand {
   std::filesystem::path out_dir;
   std::uint32_t seed = 1;
+  bool octree = false;  // --octree: two OctoMap octrees instead (pipeline/octree_example.hpp)
 };
 
 int RunExampleCommand(const ExampleCommand& command, std::ostream& out);

@@ -2,6 +2,7 @@
 // Filled from a job YAML by io/job_file.hpp (validated there) or from the command line.
 #pragma once
 
+#include "octree/octree_options.hpp"
 #include "pipeline/composite.hpp"
 #include "pipeline/pair_merge.hpp"
 #include "refine/pose_graph.hpp"
@@ -19,7 +20,8 @@ struct FleetOptions {
   double min_wall_agreement = 0.7;
   PoseGraphOptions pose_graph;
   FusionMode fusion = FusionMode::kLogOdds;
-  int threads = 0;  // 0: all cores
+  int threads = 0;       // 0: all cores
+  OctreeOptions octree;  // floor plans of the job's octrees (.bt, .ot maps)
 };
 
 }  // namespace fleetmerge

@@ -44,6 +44,16 @@ int main(int argc, char** argv) {
                    "best omega a pair needs to become an edge")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  merge_app
+      ->add_option("--octree-band-min", merge.options.octree.band_min_m,
+                   "octrees: bottom of the floor plan's height band, metres above the floor")
+      ->check(CLI::Range(-10.0, 10.0))
+      ->capture_default_str();
+  merge_app
+      ->add_option("--octree-band-max", merge.options.octree.band_max_m,
+                   "octrees: top of the floor plan's height band, metres above the floor")
+      ->check(CLI::Range(-10.0, 10.0))
+      ->capture_default_str();
   merge_app->add_flag("--quiet", merge.quiet, "no progress output");
   AddMethodOptions(*merge_app, merge.options.pair);
 
@@ -52,6 +62,8 @@ int main(int argc, char** argv) {
       "example", "Write two overlapping robot maps of a synthetic office with the true answer");
   example_app->add_option("dir", example.out_dir, "output folder")->required();
   example_app->add_option("--seed", example.seed, "random seed")->capture_default_str();
+  example_app->add_flag("--octree", example.octree,
+                        "two OctoMap octrees (.bt) of one storey, with truth.yaml and job.yaml");
 
   SimulateCommand simulate;
   CLI::App* simulate_app = AddSimulateCommand(app, simulate);

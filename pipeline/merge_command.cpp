@@ -12,7 +12,9 @@
 #include "io/atomic_file.hpp"
 #include "io/job_file.hpp"
 #include "io/map_io.hpp"
+#include "io/octree_io.hpp"
 #include "pipeline/fleet_merge.hpp"
+#include "pipeline/octree_maps.hpp"
 #include "pipeline/parallel.hpp"
 #include "pipeline/preview.hpp"
 #include "pipeline/report_json.hpp"
@@ -57,13 +59,17 @@ std::vector<std::string> WriteOutputs(const Job& job, const FleetResult& result,
 }
 
 // Loads the job's maps on `threads` threads (0: all cores); a failure is reported for the first
-// failing map in job order, as a sequential load would.
-std::vector<LoadedMap> LoadMaps(const Job& job, int threads) {
+// failing map in job order, as a sequential load would. Octrees (.bt, .ot) come with their floor
+// plans, and `octrees` gets one entry per map (empty for a 2-D map).
+std::vector<LoadedMap> LoadMaps(const Job& job, int threads, std::vector<JobOctree>& octrees) {
+  octrees.assign(job.maps.size(), {});
   std::vector<std::optional<LoadedMap>> loaded(job.maps.size());
   std::vector<std::exception_ptr> failures(job.maps.size());
   ParallelFor(job.maps.size(), threads, [&](std::size_t m) {
     try {
-      loaded[m] = LoadMap(job.maps[m].path);
+      const auto& path = job.maps[m].path;
+      loaded[m] =
+          IsOctreePath(path) ? LoadOctreeMap(path, job.options.octree, octrees[m]) : LoadMap(path);
     } catch (...) {  // kept per map so that the first in job order is the one reported
       failures[m] = std::current_exception();
     }
@@ -79,7 +85,8 @@ std::vector<LoadedMap> LoadMaps(const Job& job, int threads) {
 void RunJob(const Job& job, bool quiet, std::ostream& out, std::ostream& err) {
   const auto start = Clock::now();
   JobTiming timing;
-  const std::vector<LoadedMap> loaded = LoadMaps(job, job.options.threads);
+  std::vector<JobOctree> octrees;
+  const std::vector<LoadedMap> loaded = LoadMaps(job, job.options.threads, octrees);
   std::vector<std::filesystem::path> protect = {job.job_file};
   int reference = 0;
   for (std::size_t m = 0; m < job.maps.size(); ++m) {
@@ -95,9 +102,11 @@ void RunJob(const Job& job, bool quiet, std::ostream& out, std::ostream& err) {
 
   const auto write_start = Clock::now();
   const std::vector<std::string> files = WriteOutputs(job, result, protect);
+  const OctreeOutputs octree_outputs = WriteMergedOctrees(job, result, octrees, protect);
   timing.write_ms = MillisecondsSince(write_start);
   timing.total_ms = MillisecondsSince(start);
-  const nlohmann::json report = MakeReport(job, result, files, timing);
+  nlohmann::json report = MakeReport(job, result, files, timing);
+  AddOctreesToReport(report, octrees, octree_outputs);
   WriteFileAtomically(job.output_dir / "report.json", report.dump(2) + "\n", protect);
 
   int merged = 0;

@@ -1,0 +1,191 @@
+#include "io/octree_io.hpp"
+
+#include <octomap/OcTree.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <optional>
+#include <sstream>
+#include <string>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+
+namespace fleetmerge {
+namespace fs = std::filesystem;
+namespace {
+
+// The two OctoMap file kinds and the first line each starts with (OctoMap's own magic lines).
+enum class OctreeFormat { kBinary, kFull };
+const std::string kBinaryMagic = "# Octomap OcTree binary file";
+const std::string kFullMagic = "# Octomap OcTree file";
+
+std::optional<OctreeFormat> FormatOf(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".bt") return OctreeFormat::kBinary;
+  if (ext == ".ot") return OctreeFormat::kFull;
+  return std::nullopt;
+}
+
+OctreeFormat RequireFormat(const fs::path& path) {
+  const auto format = FormatOf(path);
+  if (!format) {
+    throw Error(path.string() + ": expected an octree file name ending in .bt or .ot");
+  }
+  return *format;
+}
+
+struct OctreeHeader {
+  std::string id;
+  std::size_t size = 0;
+  double resolution_m = 0.0;
+  std::size_t data_offset = 0;  // first byte after the "data" line
+};
+
+[[noreturn]] void Fail(const fs::path& path, const std::string& what) {
+  throw Error(path.string() + ": " + what);
+}
+
+std::string Trimmed(std::string line) {
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  return line;
+}
+
+// Reads the header lines as OctoMap writes them: the magic line, '#' comments, "id <type>",
+// "size <nodes>", "res <metres>", then "data" and the tree's bytes.
+OctreeHeader ParseHeader(const std::string& bytes, OctreeFormat format, const fs::path& path) {
+  const std::string& magic = format == OctreeFormat::kBinary ? kBinaryMagic : kFullMagic;
+  const std::string& other = format == OctreeFormat::kBinary ? kFullMagic : kBinaryMagic;
+  std::istringstream in(bytes);
+  std::string line;
+  std::getline(in, line);
+  if (Trimmed(line) != magic) {
+    const std::string kind = format == OctreeFormat::kBinary ? "binary (.bt)" : "full (.ot)";
+    if (Trimmed(line) == other) {
+      Fail(path, "expected a " + kind + " OctoMap file, but it is the other kind; rename it to " +
+                     (format == OctreeFormat::kBinary ? ".ot" : ".bt"));
+    }
+    Fail(path,
+         "not an OctoMap octree: expected the first line '" + magic + "' of a " + kind + " file");
+  }
+  OctreeHeader header;
+  bool have_size = false, have_res = false;
+  int line_number = 1;
+  while (std::getline(in, line)) {
+    ++line_number;
+    line = Trimmed(line);
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream words(line);
+    std::string key;
+    words >> key;
+    const std::string where = "header line " + std::to_string(line_number) + ": ";
+    if (key == "data") {
+      if (!have_size || !have_res) Fail(path, where + "'data' before 'size' and 'res'");
+      header.data_offset = static_cast<std::size_t>(in.tellg());
+      return header;
+    }
+    if (key == "id") {
+      words >> header.id;
+    } else if (key == "size") {
+      long long size = -1;
+      if (!(words >> size) || size < 0) Fail(path, where + "expected 'size <node count>'");
+      header.size = static_cast<std::size_t>(size);
+      have_size = true;
+    } else if (key == "res") {
+      if (!(words >> header.resolution_m) || !std::isfinite(header.resolution_m) ||
+          header.resolution_m <= 0.0) {
+        Fail(path, where + "expected 'res <resolution in metres, > 0>'");
+      }
+      have_res = true;
+    } else {
+      Fail(path, where + "unexpected '" + key + "' (expected id, size, res or data)");
+    }
+  }
+  Fail(path, "the header ends without a 'data' line (truncated or not an octree)");
+}
+
+void CheckHeader(const OctreeHeader& header, OctreeFormat format, const fs::path& path) {
+  // Binary files from OctoMap before 1.4 carry no id; they are OcTrees.
+  if (header.id.empty() && format == OctreeFormat::kFull) Fail(path, "the header has no 'id'");
+  if (!header.id.empty() && header.id != "OcTree") {
+    Fail(path, "is an octree of type '" + header.id +
+                   "'; expected 'OcTree' (an occupancy octree without colour or time stamps)");
+  }
+  if (header.size == 0) Fail(path, "the octree is empty (size 0): nothing to merge");
+}
+
+std::string ReadBytes(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) Fail(path, "is a folder, expected an octree file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) Fail(path, "cannot open the octree file (missing or unreadable)");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  return bytes.str();
+}
+
+}  // namespace
+
+bool IsOctreePath(const fs::path& path) { return FormatOf(path).has_value(); }
+
+void CheckOctreeFile(const fs::path& path) {
+  const OctreeFormat format = RequireFormat(path);
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) Fail(path, "is a folder, expected an octree file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) Fail(path, "cannot open the octree file (missing or unreadable)");
+  std::string head(4096, '\0');  // the header is a few short lines
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  CheckHeader(ParseHeader(head, format, path), format, path);
+}
+
+std::unique_ptr<octomap::OcTree> LoadOctree(const fs::path& path) {
+  const OctreeFormat format = RequireFormat(path);
+  const std::string bytes = ReadBytes(path);
+  const OctreeHeader header = ParseHeader(bytes, format, path);
+  CheckHeader(header, format, path);
+  // The header is checked; OctoMap reads the data into a fresh tree of the file's resolution.
+  auto tree = std::make_unique<octomap::OcTree>(header.resolution_m);
+  std::istringstream data(bytes.substr(header.data_offset), std::ios::binary);
+  if (format == OctreeFormat::kBinary) {
+    tree->readBinaryData(data);
+  } else {
+    tree->readData(data);
+  }
+  // A truncated file leaves the stream failed or the tree short of nodes; OctoMap itself only
+  // warns on stderr.
+  if (data.fail() || tree->size() != header.size) {
+    Fail(path, "the octree data is truncated or corrupt: the header says " +
+                   std::to_string(header.size) + " nodes, " + std::to_string(tree->size()) +
+                   " could be read");
+  }
+  return tree;
+}
+
+void SaveOctree(const octomap::OcTree& tree, const fs::path& path,
+                const std::vector<fs::path>& protected_inputs) {
+  const OctreeFormat format = RequireFormat(path);
+  if (tree.size() == 0) Fail(path, "refusing to write an empty octree");
+  CheckNotAnInput(path, protected_inputs);
+  std::ostringstream bytes(std::ios::binary);
+  if (format == OctreeFormat::kBinary) {
+    // OctoMap's header, written here because writeBinaryConst() also prints progress on stderr;
+    // the data is OctoMap's own encoding.
+    bytes << std::setprecision(17) << kBinaryMagic << "\n# (written by fleetmerge)\n#\nid "
+          << tree.getTreeType() << "\nsize " << tree.size() << "\nres " << tree.getResolution()
+          << "\ndata\n";
+    tree.writeBinaryData(bytes);
+  } else {
+    tree.write(bytes);
+  }
+  if (!bytes) Fail(path, "OctoMap could not serialise the octree");
+  WriteFileAtomically(path, bytes.str(), protected_inputs);
+}
+
+}  // namespace fleetmerge
