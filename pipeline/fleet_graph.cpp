@@ -141,7 +141,14 @@ void ResolveTriangleConflicts(int map_count, std::vector<PairOutcome>& pairs,
       const auto [support, contradict] =
           TriangleVotes(index, pairs, pairs[k].a, pairs[k].b,
                         pairs[k].hypotheses[pairs[k].edge_hypothesis].T_a_b, options);
-      if (contradict - support > worst_margin) worst = k, worst_margin = contradict - support;
+      const int margin = contradict - support;
+      // Equal margins: the pair with the weaker walls goes first (two wrong edges of one map
+      // contradict each other's right neighbours as much as themselves).
+      if (margin > worst_margin ||
+          (margin == worst_margin && worst >= 0 &&
+           pairs[k].wall_agreement < pairs[worst].wall_agreement)) {
+        worst = k, worst_margin = margin;
+      }
     }
     if (worst < 0) return;
     PairOutcome& pair = pairs[worst];
