@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/resample.hpp"
 #include "pipeline/composite.hpp"
+#include "pipeline/corroboration.hpp"
 #include "pipeline/fleet_graph.hpp"
 #include "pipeline/parallel.hpp"
 
@@ -36,6 +37,19 @@ void AcceptByThreshold(std::vector<PairOutcome>& pairs, const FleetOptions& opti
   }
 }
 
+// Rejects every accepted edge of map m: its placement is contradicted by the other maps that see
+// the same place (pipeline/corroboration.hpp).
+void DetachMap(int m, const Corroboration& verdict, std::vector<PairOutcome>& pairs) {
+  for (PairOutcome& p : pairs) {
+    if (!p.accepted || (p.a != m && p.b != m)) continue;
+    p.accepted = false;
+    p.edge_hypothesis = -1;
+    p.note = "rejected: map " + std::to_string(m + 1) + "'s placement is contradicted by " +
+             std::to_string(verdict.conflicts) + " of the maps it overlaps, supported by " +
+             std::to_string(verdict.supporters);
+  }
+}
+
 }  // namespace
 
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
@@ -63,8 +77,19 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
 
   start = std::chrono::steady_clock::now();
   AcceptByThreshold(result.pairs, options);
-  const FleetGraph graph =
+  FleetGraph graph =
       SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph);
+  // Each round detaches one map, so this ends.
+  for (std::size_t round = 0; round < maps.size(); ++round) {
+    const auto verdicts =
+        CorroborateMaps(result.maps, result.pairs, graph, options.min_overlap_cells,
+                        options.min_wall_agreement, options.pose_graph);
+    const int m = LeastCorroboratedMap(verdicts);
+    if (m < 0) break;
+    DetachMap(m, verdicts[m], result.pairs);
+    graph =
+        SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph);
+  }
   result.component_of = graph.component_of;
   result.T_component_map = graph.T_component_map;
   result.timing.refine_ms = MillisecondsSince(start);

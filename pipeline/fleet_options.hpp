@@ -17,7 +17,7 @@ struct FleetOptions {
   // (core/wall_agreement.hpp) >= min_wall_agreement. Defaults from the measurements in README.
   double omega_threshold = 0.9;
   int min_overlap_cells = 2000;
-  double min_wall_agreement = 0.7;
+  double min_wall_agreement = 0.8;
   PoseGraphOptions pose_graph;
   FusionMode fusion = FusionMode::kLogOdds;
   int threads = 0;       // 0: all cores
