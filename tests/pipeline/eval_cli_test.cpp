@@ -1,0 +1,135 @@
+// `fleetmerge eval` end to end: a CutFleet case of the Intel lab map written as a case folder
+// (`fleetmerge bench cut-fleet`: robot maps, truth.yaml, job.yaml), `fleetmerge merge job.yaml`,
+// then `fleetmerge eval` on its report: every truly overlapping pair merged within the fine
+// tolerance, as JSON and as a table. Bad input exits 1 naming the file (synthetic case).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "pipeline/cut_fleet_case.hpp"
+#include "pipeline/synthetic_office.hpp"
+#include "tests/support/run_command.hpp"
+#include "tests/support/shared_data.hpp"
+
+namespace fleetmerge {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using testing::ShellQuote;
+
+testing::CommandResult Fleetmerge(const std::string& args) {
+  return testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " " + args);
+}
+
+// One merged case of the Intel lab for all tests: cut and merged once, through the CLI.
+const fs::path& MergedCase() {
+  static const fs::path dir = [] {
+    const fs::path d = testing::MakeTempDir("eval_cli") / "intel";
+    const auto cut =
+        Fleetmerge("bench cut-fleet " + ShellQuote(*testing::SharedMapsDir() / "intel_lab.yaml") +
+                   " " + ShellQuote(d) + " --robots 4 --seed 1");
+    EXPECT_EQ(cut.exit_code, 0) << cut.both();
+    const auto merge = Fleetmerge("merge --quiet " + ShellQuote(d / "job.yaml"));
+    EXPECT_EQ(merge.exit_code, 0) << merge.both();
+    return d;
+  }();
+  return dir;
+}
+
+TEST(EvalCliTest, MergedCutFleetScoresEveryPairWithinTheFineTolerance) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const fs::path& d = MergedCase();
+  const auto eval = Fleetmerge("eval --json " + ShellQuote(d / "merged" / "report.json") + " " +
+                               ShellQuote(d / "truth.yaml"));
+  ASSERT_EQ(eval.exit_code, 0) << eval.both();
+  const json result = json::parse(eval.out);
+  const json& s = result["summary"];
+  EXPECT_EQ(s["maps"], 4);
+  EXPECT_EQ(s["scored_pairs"], 6);  // 2 x 2 tiles grown by 30 %: every pair overlaps
+  EXPECT_EQ(s["merged_pairs"], 6);
+  EXPECT_EQ(s["fine_pairs"], 6) << result.dump(2);
+  EXPECT_EQ(s["false_merges"], 0);
+  EXPECT_TRUE(s["missed_maps"].empty());
+  EXPECT_LT(s["max_yaw_error_deg"].get<double>(), 0.25);
+  for (const json& p : result["pairs"]) {
+    EXPECT_TRUE(p["merged"].get<bool>());
+    EXPECT_LT(p["translation_error_m"].get<double>(), 0.1) << p;
+  }
+}
+
+TEST(EvalCliTest, TableNamesPairsAndRates) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const fs::path& d = MergedCase();
+  const auto eval = Fleetmerge("eval " + ShellQuote(d / "merged" / "report.json") + " " +
+                               ShellQuote(d / "truth.yaml"));
+  ASSERT_EQ(eval.exit_code, 0) << eval.both();
+  EXPECT_NE(eval.out.find("robot1 - robot2"), std::string::npos) << eval.out;
+  EXPECT_NE(eval.out.find("success coarse (1.0 deg, 3.0 cells): 6/6 = 100.0 %"), std::string::npos)
+      << eval.out;
+  EXPECT_NE(eval.out.find("false merges: 0"), std::string::npos) << eval.out;
+  EXPECT_NE(eval.out.find("missed maps: 0"), std::string::npos) << eval.out;
+}
+
+TEST(EvalCliTest, ABigMinimumOverlapLeavesNothingScored) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const fs::path& d = MergedCase();
+  const auto eval =
+      Fleetmerge("eval --json --min-overlap-cells 100000000 " +
+                 ShellQuote(d / "merged" / "report.json") + " " + ShellQuote(d / "truth.yaml"));
+  ASSERT_EQ(eval.exit_code, 0) << eval.both();
+  EXPECT_EQ(json::parse(eval.out)["summary"]["scored_pairs"], 0);
+}
+
+TEST(EvalCliTest, BadInputExitsOneNamingTheFile) {
+  const fs::path d = testing::MakeTempDir("eval_cli_bad") / "case";
+  WriteCutFleetCase(GenerateOfficeFloor(OfficeOptions{}, 5), "office", "synthetic office 5", 2, 5,
+                    d);
+  // A valid report of the two maps, each alone.
+  json report = {{"maps", json::array()}, {"components", json::array()}};
+  for (int k = 0; k < 2; ++k) {
+    const std::string name = "robot" + std::to_string(k + 1);
+    report["maps"].push_back(
+        {{"name", name}, {"component", k}, {"pose", {{"x", 0}, {"y", 0}, {"yaw", 0}}}});
+    report["components"].push_back({{"id", k}, {"maps", {name}}});
+  }
+  std::ofstream(d / "report.json") << report.dump();
+  auto eval = Fleetmerge("eval --json " + ShellQuote(d / "report.json") + " " +
+                         ShellQuote(d / "truth.yaml"));
+  ASSERT_EQ(eval.exit_code, 0) << eval.both();  // evaluated: nothing merged, both maps missed
+  EXPECT_EQ(json::parse(eval.out)["summary"]["missed_maps"], json({"robot1", "robot2"}));
+
+  eval = Fleetmerge("eval " + ShellQuote(d / "absent.json") + " " + ShellQuote(d / "truth.yaml"));
+  EXPECT_EQ(eval.exit_code, 1);
+  EXPECT_NE(eval.err.find("absent.json: cannot open report"), std::string::npos) << eval.err;
+
+  // The truth names a map file that is not there.
+  const fs::path bad = d / "bad_truth";
+  fs::create_directories(bad);
+  fs::copy_file(d / "truth.yaml", bad / "truth.yaml");
+  eval = Fleetmerge("eval " + ShellQuote(d / "report.json") + " " + ShellQuote(bad / "truth.yaml"));
+  EXPECT_EQ(eval.exit_code, 1);
+  EXPECT_NE(eval.err.find((bad / "robot1.yaml").string()), std::string::npos) << eval.err;
+
+  // The job file as the report: not JSON.
+  eval = Fleetmerge("eval " + ShellQuote(d / "job.yaml") + " " + ShellQuote(d / "truth.yaml"));
+  EXPECT_EQ(eval.exit_code, 1);
+  EXPECT_NE(eval.err.find("job.yaml: malformed JSON"), std::string::npos) << eval.err;
+
+  // A report of other maps.
+  report["maps"][1]["name"] = "robot7";
+  report["components"][1]["maps"][0] = "robot7";
+  std::ofstream(d / "report.json") << report.dump();
+  eval = Fleetmerge("eval " + ShellQuote(d / "report.json") + " " + ShellQuote(d / "truth.yaml"));
+  EXPECT_EQ(eval.exit_code, 1);
+  EXPECT_NE(eval.err.find("map 'robot2' of " + (d / "truth.yaml").string() + " is not in " +
+                          (d / "report.json").string()),
+            std::string::npos)
+      << eval.err;
+}
+
+}  // namespace
+}  // namespace fleetmerge
