@@ -1,7 +1,8 @@
 // `fleetmerge bench`: experiments on case folders with ground truth (truth.yaml).
 //   bench cut-fleet MAP.yaml DIR [--robots K] [--seed S]: a case cut from one building map
 //       (pipeline/cut_fleet_case.hpp): robot maps, truth.yaml, job.yaml.
-//   bench sampling CASE_DIR [--trials N] [--seed S] [--out DIR]: the paper's sampling experiment
+//   bench sampling CASE_DIR [--trials N] [--seed S] [--out DIR] [--ours]: the paper's sampling
+//   experiment
 //       (pipeline/sampling_experiment.hpp); writes DIR/sampling_trials.csv (one row per setting
 //       and trial), DIR/sampling_summary.csv (one row per setting) and DIR/sampling.png, and
 //       prints the summary.
@@ -27,6 +28,7 @@ struct SamplingBenchCommand {
   std::uint32_t seed = 1;
   long long min_overlap_cells = 2000;
   bool quiet = false;
+  bool ours = false;  // our pipeline (2-D correlation + refinement) instead of the paper's
 };
 
 int RunCutFleetCommand(const CutFleetCommand& command, std::ostream& out);

@@ -94,6 +94,9 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   sampling_app->add_flag("--quiet", sampling.quiet, "no progress output");
+  sampling_app->add_flag("--ours", sampling.ours,
+                         "our pipeline (2-D correlation + refinement) instead of the paper's "
+                         "(X/Y spectra, no refinement)");
 
   try {
     app.parse(argc, argv);

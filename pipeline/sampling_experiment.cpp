@@ -69,6 +69,13 @@ double Median(std::vector<double> v) {
 
 }  // namespace
 
+PairOptions SamplingExperimentOptions::PaperPairOptions() {
+  PairOptions pair;
+  pair.refine = false;
+  pair.hypotheses.translation.method = TranslationMethod::kXySpectra;
+  return pair;
+}
+
 std::string SamplingSetting::Label() const {
   std::ostringstream s;
   if (mode == SamplingMode::kEveryKth) {
@@ -96,21 +103,22 @@ std::vector<SamplingTrial> RunSamplingExperiment(const GroundTruth& truth,
                                                  const SamplingExperimentOptions& options,
                                                  const SamplingProgressFn& progress) {
   const std::vector<Problem> problems = MakeProblems(truth, grids, options);
-  std::vector<SamplingTrial> rows;
-  const int total = static_cast<int>(settings.size() * problems.size());
-  for (std::size_t s = 0; s < settings.size(); ++s) {
-    for (std::size_t t = 0; t < problems.size(); ++t) {
-      const Problem& p = problems[t];
-      // The paper's pipeline: X/Y spectra translation, no refinement; the trial's own seeds so
-      // that every setting samples the same way on the same problem.
-      PairOptions pair;
-      pair.refine = false;
-      pair.hypotheses.translation.method = TranslationMethod::kXySpectra;
+  const std::size_t n_trials = problems.size();
+  std::vector<SamplingTrial> rows(settings.size() * n_trials);
+  const int total = static_cast<int>(rows.size());
+  int done = 0;
+  // Trials outer, settings inner: a burst of load from other processes then slows all settings
+  // of a trial alike instead of a run of settings (the machine may be shared).
+  for (std::size_t t = 0; t < n_trials; ++t) {
+    const Problem& p = problems[t];
+    for (std::size_t s = 0; s < settings.size(); ++s) {
+      // The trial's own seeds, so that every setting samples the same way on the same problem.
+      PairOptions pair = options.pair;
       pair.hypotheses.hough_sampling = ToSampling(settings[s], 2 * t + 1);
       pair.hypotheses.spectra_sampling = ToSampling(settings[s], 2 * t + 2);
       const auto start = std::chrono::steady_clock::now();
       const PairResult result = MergePair(p.a_new, *grids[p.b], pair);
-      SamplingTrial row;
+      SamplingTrial& row = rows[s * n_trials + t];
       row.time_ms = MillisecondsSince(start);
       row.setting = static_cast<int>(s);
       row.trial = static_cast<int>(t);
@@ -124,8 +132,7 @@ std::vector<SamplingTrial> RunSamplingExperiment(const GroundTruth& truth,
         row.displacement_cells = error.mean_displacement_cells;
         row.coarse = error.yaw_deg <= 1.0 && error.mean_displacement_cells <= 3.0;
       }
-      rows.push_back(row);
-      if (progress) progress(static_cast<int>(rows.size()), total);
+      if (progress) progress(++done, total);
     }
   }
   return rows;
@@ -137,7 +144,7 @@ std::vector<SamplingSummary> SummarizeSampling(const std::vector<SamplingSetting
   for (std::size_t s = 0; s < settings.size(); ++s) {
     SamplingSummary sum;
     sum.setting = settings[s];
-    std::vector<double> displacement;
+    std::vector<double> displacement, times;
     int n = 0, success = 0;
     sum.min_omega = 1.0;
     for (const SamplingTrial& t : trials) {
@@ -149,12 +156,14 @@ std::vector<SamplingSummary> SummarizeSampling(const std::vector<SamplingSetting
       sum.max_omega = std::max(sum.max_omega, t.best_omega);
       success += t.coarse;
       displacement.push_back(t.displacement_cells);
+      times.push_back(t.time_ms);
     }
     if (n > 0) {
       sum.mean_time_ms /= n;
       sum.mean_omega /= n;
       sum.success_rate = double(success) / n;
       sum.median_displacement_cells = Median(displacement);
+      sum.median_time_ms = Median(times);
     }
     out.push_back(sum);
   }

@@ -16,6 +16,7 @@
 #include "core/occupancy_grid.hpp"
 #include "core/point_sampling.hpp"
 #include "io/truth_file.hpp"
+#include "pipeline/pair_merge.hpp"
 
 namespace fleetmerge {
 
@@ -35,6 +36,9 @@ struct SamplingExperimentOptions {
   std::uint32_t seed = 1;
   long long min_overlap_cells = 2000;  // pairs that truly overlap (truth.yaml `cells`)
   double max_offset_m = 10.0;          // of the first map's random re-framing, per axis
+  // The pipeline; its Hough and spectra sampling are replaced by each setting's.
+  PairOptions pair = PaperPairOptions();
+  static PairOptions PaperPairOptions();  // X/Y spectra translation, no refinement
 };
 
 struct SamplingTrial {
@@ -57,10 +61,11 @@ std::vector<SamplingTrial> RunSamplingExperiment(const GroundTruth& truth,
                                                  const SamplingExperimentOptions& options,
                                                  const SamplingProgressFn& progress = {});
 
-// Per setting: mean time, omega mean / min / max, coarse success share, median displacement.
+// Per setting: mean and median time, omega mean / min / max, coarse success share, median
+// displacement.
 struct SamplingSummary {
   SamplingSetting setting;
-  double mean_time_ms = 0.0;
+  double mean_time_ms = 0.0, median_time_ms = 0.0;
   double mean_omega = 0.0, min_omega = 0.0, max_omega = 0.0;
   double success_rate = 0.0;
   double median_displacement_cells = 0.0;

@@ -1,6 +1,7 @@
 #include "pipeline/sampling_plot.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <opencv2/imgproc.hpp>
@@ -9,6 +10,7 @@ namespace fleetmerge {
 namespace {
 
 const cv::Scalar kBlack(0, 0, 0), kGrey(200, 200, 200), kRandom(200, 90, 20), kEvery(30, 30, 210);
+constexpr double kMinKept = 0.05;
 constexpr int kWidth = 960, kPanelHeight = 260, kLeft = 80, kRight = 20, kTop = 30, kBottom = 40;
 
 std::string Format(double v, const char* format) {
@@ -25,7 +27,11 @@ void DrawPanel(cv::Mat& image, int y0, const std::vector<SamplingSummary>& summa
                const std::function<std::pair<double, double>(const SamplingSummary&)>& range) {
   const int x_min = kLeft, x_max = kWidth - kRight;
   const int y_min = y0 + kTop, y_max = y0 + kPanelHeight - kBottom;  // image rows: top, bottom
-  auto px = [&](double x) { return int(x_min + x * (x_max - x_min)); };
+  // x: log scale from 5 % to 100 % of the points, so that 1/k for k = 1..20 spreads out.
+  auto px = [&](double x) {
+    const double t = std::log(std::max(x, kMinKept) / kMinKept) / std::log(1.0 / kMinKept);
+    return int(x_min + t * (x_max - x_min));
+  };
   auto py = [&](double y) {
     const double t = std::clamp((y - lo) / (hi - lo), 0.0, 1.0);
     return int(y_max - t * (y_max - y_min));
@@ -75,11 +81,11 @@ cv::Mat DrawSamplingPlot(const std::vector<SamplingSummary>& summary, const std:
   cv::putText(image, title, {kLeft, 25}, cv::FONT_HERSHEY_SIMPLEX, 0.6, kBlack, 1, cv::LINE_AA);
   double max_time = 0.0, min_omega = 1.0;
   for (const SamplingSummary& s : summary) {
-    max_time = std::max(max_time, s.mean_time_ms);
+    max_time = std::max(max_time, s.median_time_ms);
     min_omega = std::min(min_omega, s.min_omega);
   }
-  DrawPanel(image, 40, summary, "mean time per pair [ms]", 0.0, std::max(1.0, max_time * 1.1),
-            "%.1f", [](const SamplingSummary& s) { return s.mean_time_ms; }, {});
+  DrawPanel(image, 40, summary, "median time per pair [ms]", 0.0, std::max(1.0, max_time * 1.1),
+            "%.1f", [](const SamplingSummary& s) { return s.median_time_ms; }, {});
   DrawPanel(
       image, 40 + kPanelHeight, summary, "best omega: mean, bars min..max",
       std::floor(min_omega * 20) / 20, 1.0, "%.3f",
@@ -89,8 +95,8 @@ cv::Mat DrawSamplingPlot(const std::vector<SamplingSummary>& summary, const std:
             "best hypothesis right (1 deg, 3 cells) [% of trials]", 0.0, 100.0, "%.0f",
             [](const SamplingSummary& s) { return 100.0 * s.success_rate; }, {});
   const int y = image.rows - 12;
-  cv::putText(image, "x: share of occupied points used (Hough + X/Y spectra)", {kLeft, y},
-              cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack, 1, cv::LINE_AA);
+  cv::putText(image, "x: share of occupied points used (Hough + X/Y spectra), log scale",
+              {kLeft, y}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kBlack, 1, cv::LINE_AA);
   cv::circle(image, {kWidth - 330, y - 4}, 4, kRandom, cv::FILLED);
   cv::putText(image, "random fraction", {kWidth - 320, y}, cv::FONT_HERSHEY_SIMPLEX, 0.45, kRandom,
               1, cv::LINE_AA);

@@ -1,7 +1,7 @@
 // The sampling experiment's plot (like the paper's Fig. 6 and 7, both samplings in one figure):
-// three stacked panels over the fraction of points kept, random sampling in blue, every k-th
-// point in red: mean time per pair, best omega (mean, bars from the lowest to the highest), and
-// the share of trials whose best hypothesis is right (within 1 degree and 3 cells).
+// three stacked panels over the fraction of points kept (log scale), random sampling in blue,
+// every k-th point in red: median time per pair, best omega (mean, bars from the lowest to the
+// highest), and the share of trials whose best hypothesis is right (within 1 degree and 3 cells).
 #pragma once
 
 #include <opencv2/core.hpp>
