@@ -42,11 +42,11 @@ void DrawPanel(cv::Mat& image, int y0, const std::vector<SamplingSummary>& summa
     cv::putText(image, Format(y, tick_format), {5, py(y) + 5}, cv::FONT_HERSHEY_SIMPLEX, 0.45,
                 kBlack, 1, cv::LINE_AA);
   }
-  for (int i = 0; i <= 10; ++i) {  // x ticks every 10 % of the points
-    const int x = px(i / 10.0);
+  for (const int percent : {5, 10, 20, 30, 50, 70, 100}) {  // x ticks
+    const int x = px(percent / 100.0);
     cv::line(image, {x, y_max}, {x, y_max + 5}, kBlack, 1);
-    cv::putText(image, std::to_string(i * 10) + "%", {x - 14, y_max + 20}, cv::FONT_HERSHEY_SIMPLEX,
-                0.4, kBlack, 1, cv::LINE_AA);
+    cv::putText(image, std::to_string(percent) + "%", {x - 14, y_max + 20},
+                cv::FONT_HERSHEY_SIMPLEX, 0.4, kBlack, 1, cv::LINE_AA);
   }
   cv::rectangle(image, {x_min, y_min}, {x_max, y_max}, kBlack, 1);
   cv::putText(image, label, {x_min + 5, y0 + 20}, cv::FONT_HERSHEY_SIMPLEX, 0.55, kBlack, 1,
