@@ -76,9 +76,10 @@ int RunSamplingBenchCommand(const SamplingBenchCommand& command, std::ostream& o
           << "," << s.success_rate << "," << s.median_displacement_cells << "\n";
   }
   WriteFileAtomically(out_dir / "sampling_summary.csv", table.str());
-  SaveImage(DrawSamplingPlot(summary, "Sampling (paper IV-B): " + command.case_dir.string() + ", " +
-                                          std::to_string(command.trials) + " trials"),
-            out_dir / "sampling.png");
+  const std::string title = std::string(command.ours ? "Our pipeline" : "Paper's pipeline") +
+                            ", sampling (IV-B): " + command.case_dir.string() + ", " +
+                            std::to_string(command.trials) + " trials";
+  SaveImage(DrawSamplingPlot(summary, title), out_dir / "sampling.png");
 
   out << std::left << std::setw(12) << "setting" << std::right << std::setw(8) << "kept"
       << std::setw(10) << "med.ms" << std::setw(8) << "omega" << std::setw(8) << "min"
