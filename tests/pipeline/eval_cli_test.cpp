@@ -2,11 +2,13 @@
 // (`fleetmerge bench cut-fleet`: robot maps, truth.yaml, job.yaml), `fleetmerge merge job.yaml`,
 // then `fleetmerge eval` on its report: every truly overlapping pair merged within the fine
 // tolerance, as JSON and as a table. Bad input exits 1 naming the file (synthetic case).
+// `fleetmerge bench sampling` writes its CSVs and plot.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <string>
 
 #include "pipeline/cut_fleet_case.hpp"
@@ -129,6 +131,40 @@ TEST(EvalCliTest, BadInputExitsOneNamingTheFile) {
                           (d / "report.json").string()),
             std::string::npos)
       << eval.err;
+}
+
+TEST(EvalCliTest, BenchSamplingWritesOneRowPerSettingAndTrialAndThePlot) {
+  // A synthetic office cut into 4 robots: the bookkeeping only (pose accuracy is tested in
+  // sampling_experiment_test on a real map).
+  const fs::path d = testing::MakeTempDir("bench_sampling") / "case";
+  WriteCutFleetCase(GenerateOfficeFloor(OfficeOptions{}, 5), "office", "synthetic office 5", 4, 5,
+                    d);
+  const auto bench = Fleetmerge("bench sampling --quiet --trials 2 --out " + ShellQuote(d / "out") +
+                                " " + ShellQuote(d));
+  ASSERT_EQ(bench.exit_code, 0) << bench.both();
+  std::ifstream trials(d / "out" / "sampling_trials.csv");
+  std::string line;
+  std::getline(trials, line);
+  EXPECT_EQ(line.rfind("setting,kept_fraction,trial,map_a,map_b,time_ms,best_omega,", 0), 0u);
+  int rows = 0;
+  while (std::getline(trials, line)) ++rows;
+  EXPECT_EQ(rows, 40 * 2);
+  std::ifstream summary(d / "out" / "sampling_summary.csv");
+  rows = -1;  // the header
+  while (std::getline(summary, line)) ++rows;
+  EXPECT_EQ(rows, 40);
+  const cv::Mat plot = cv::imread((d / "out" / "sampling.png").string());
+  EXPECT_EQ(plot.cols, 960);
+  EXPECT_GT(plot.rows, 600);
+  EXPECT_NE(bench.out.find("every:20"), std::string::npos) << bench.out;
+
+  // A case whose maps do not overlap enough: an error, exit 1.
+  const auto none = Fleetmerge("bench sampling --quiet --trials 1 --min-overlap-cells 100000000 " +
+                               ShellQuote(d));
+  EXPECT_EQ(none.exit_code, 1);
+  EXPECT_NE(none.err.find("no pair of maps overlaps by at least 100000000 cells"),
+            std::string::npos)
+      << none.err;
 }
 
 }  // namespace
