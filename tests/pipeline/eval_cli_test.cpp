@@ -27,26 +27,21 @@ testing::CommandResult Fleetmerge(const std::string& args) {
   return testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " " + args);
 }
 
-// One merged case of the Intel lab for all tests: cut and merged once, through the CLI.
-const fs::path& MergedCase() {
-  static const fs::path dir = [] {
-    const fs::path d = testing::MakeTempDir("eval_cli") / "intel";
-    const auto cut =
-        Fleetmerge("bench cut-fleet " + ShellQuote(*testing::SharedMapsDir() / "intel_lab.yaml") +
-                   " " + ShellQuote(d) + " --robots 4 --seed 1");
-    EXPECT_EQ(cut.exit_code, 0) << cut.both();
-    const auto merge = Fleetmerge("merge --quiet " + ShellQuote(d / "job.yaml"));
-    EXPECT_EQ(merge.exit_code, 0) << merge.both();
-    return d;
-  }();
-  return dir;
-}
-
-TEST(EvalCliTest, MergedCutFleetScoresEveryPairWithinTheFineTolerance) {
+// The Intel lab cut into 4 robots and merged, through the CLI, then evaluated three ways (one
+// test, so that the case is cut and merged once).
+TEST(EvalCliTest, MergedIntelCutFleetScoresEveryPairWithinTheFineTolerance) {
   FLEETMERGE_REQUIRE_SHARED_MAPS();
-  const fs::path& d = MergedCase();
-  const auto eval = Fleetmerge("eval --json " + ShellQuote(d / "merged" / "report.json") + " " +
-                               ShellQuote(d / "truth.yaml"));
+  const fs::path d = testing::MakeTempDir("eval_cli") / "intel";
+  const auto cut =
+      Fleetmerge("bench cut-fleet " + ShellQuote(*testing::SharedMapsDir() / "intel_lab.yaml") +
+                 " " + ShellQuote(d) + " --robots 4 --seed 1");
+  ASSERT_EQ(cut.exit_code, 0) << cut.both();
+  const auto merge = Fleetmerge("merge --quiet " + ShellQuote(d / "job.yaml"));
+  ASSERT_EQ(merge.exit_code, 0) << merge.both();
+  const std::string files =
+      ShellQuote(d / "merged" / "report.json") + " " + ShellQuote(d / "truth.yaml");
+
+  auto eval = Fleetmerge("eval --json " + files);
   ASSERT_EQ(eval.exit_code, 0) << eval.both();
   const json result = json::parse(eval.out);
   const json& s = result["summary"];
@@ -61,27 +56,18 @@ TEST(EvalCliTest, MergedCutFleetScoresEveryPairWithinTheFineTolerance) {
     EXPECT_TRUE(p["merged"].get<bool>());
     EXPECT_LT(p["translation_error_m"].get<double>(), 0.1) << p;
   }
-}
 
-TEST(EvalCliTest, TableNamesPairsAndRates) {
-  FLEETMERGE_REQUIRE_SHARED_MAPS();
-  const fs::path& d = MergedCase();
-  const auto eval = Fleetmerge("eval " + ShellQuote(d / "merged" / "report.json") + " " +
-                               ShellQuote(d / "truth.yaml"));
+  // The table.
+  eval = Fleetmerge("eval " + files);
   ASSERT_EQ(eval.exit_code, 0) << eval.both();
   EXPECT_NE(eval.out.find("robot1 - robot2"), std::string::npos) << eval.out;
   EXPECT_NE(eval.out.find("success coarse (1.0 deg, 3.0 cells): 6/6 = 100.0 %"), std::string::npos)
       << eval.out;
   EXPECT_NE(eval.out.find("false merges: 0"), std::string::npos) << eval.out;
   EXPECT_NE(eval.out.find("missed maps: 0"), std::string::npos) << eval.out;
-}
 
-TEST(EvalCliTest, ABigMinimumOverlapLeavesNothingScored) {
-  FLEETMERGE_REQUIRE_SHARED_MAPS();
-  const fs::path& d = MergedCase();
-  const auto eval =
-      Fleetmerge("eval --json --min-overlap-cells 100000000 " +
-                 ShellQuote(d / "merged" / "report.json") + " " + ShellQuote(d / "truth.yaml"));
+  // A minimum overlap above every pair's: nothing truly overlaps.
+  eval = Fleetmerge("eval --json --min-overlap-cells 100000000 " + files);
   ASSERT_EQ(eval.exit_code, 0) << eval.both();
   EXPECT_EQ(json::parse(eval.out)["summary"]["scored_pairs"], 0);
 }
