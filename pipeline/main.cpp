@@ -4,7 +4,9 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "pipeline/bench_command.hpp"
 #include "pipeline/cli_options.hpp"
+#include "pipeline/eval_command.hpp"
 #include "pipeline/example_command.hpp"
 #include "pipeline/merge_command.hpp"
 #include "pipeline/pair_command.hpp"
@@ -68,6 +70,50 @@ int main(int argc, char** argv) {
   SimulateCommand simulate;
   CLI::App* simulate_app = AddSimulateCommand(app, simulate);
 
+  EvalCommand eval;
+  CLI::App* eval_app = app.add_subcommand(
+      "eval", "Score a merge's report.json against a case's truth.yaml (poses, false merges)");
+  eval_app->add_option("report", eval.report_json, "report.json written by `fleetmerge merge`")
+      ->required();
+  eval_app->add_option("truth", eval.truth_yaml, "truth.yaml of the case")->required();
+  eval_app->add_flag("--json", eval.json, "print JSON instead of a table");
+  eval_app
+      ->add_option("--min-overlap-cells", eval.options.min_overlap_cells,
+                   "pairs observing at least this many common cells truly overlap")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+
+  CLI::App* bench_app =
+      app.add_subcommand("bench", "Experiments on case folders with ground truth (truth.yaml)");
+  bench_app->require_subcommand(1);
+  CutFleetCommand cut;
+  CLI::App* cut_app = bench_app->add_subcommand(
+      "cut-fleet", "Cut a building map into K robot maps in random frames, with truth.yaml");
+  cut_app->add_option("map", cut.map_yaml, "the building's map (map_server YAML)")->required();
+  cut_app->add_option("dir", cut.out_dir, "output case folder")->required();
+  cut_app->add_option("--robots", cut.robots, "number of robot maps")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cut_app->add_option("--seed", cut.seed, "random seed")->capture_default_str();
+  SamplingBenchCommand sampling;
+  CLI::App* sampling_app = bench_app->add_subcommand(
+      "sampling", "The paper's sampling experiment (IV-B): random vs every k-th point");
+  sampling_app->add_option("case", sampling.case_dir, "case folder with truth.yaml")->required();
+  sampling_app->add_option("--trials", sampling.trials, "trials per setting")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  sampling_app->add_option("--seed", sampling.seed, "random seed")->capture_default_str();
+  sampling_app->add_option("--out", sampling.out_dir, "output folder (default CASE/sampling)");
+  sampling_app
+      ->add_option("--min-overlap-cells", sampling.min_overlap_cells,
+                   "pairs observing at least this many common cells truly overlap")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sampling_app->add_flag("--quiet", sampling.quiet, "no progress output");
+  sampling_app->add_flag("--ours", sampling.ours,
+                         "our pipeline (2-D correlation + refinement) instead of the paper's "
+                         "(X/Y spectra, no refinement)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -81,6 +127,9 @@ int main(int argc, char** argv) {
     if (pair_app->parsed()) return RunPairCommand(pair, std::cout);
     if (example_app->parsed()) return RunExampleCommand(example, std::cout);
     if (simulate_app->parsed()) return RunSimulateCommand(simulate, std::cout);
+    if (eval_app->parsed()) return RunEvalCommand(eval, std::cout);
+    if (cut_app->parsed()) return RunCutFleetCommand(cut, std::cout);
+    if (sampling_app->parsed()) return RunSamplingBenchCommand(sampling, std::cout, std::cerr);
   } catch (const Error& e) {
     std::cerr << "fleetmerge: error: " << e.what() << "\n";
     return 1;
