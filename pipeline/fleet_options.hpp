@@ -2,6 +2,9 @@
 // Filled from a job YAML by io/job_file.hpp (validated there) or from the command line.
 #pragma once
 
+#include <cstdint>
+
+#include "core/occupancy_grid.hpp"
 #include "pipeline/composite.hpp"
 #include "pipeline/pair_merge.hpp"
 #include "refine/pose_graph.hpp"
@@ -20,6 +23,8 @@ struct FleetOptions {
   PoseGraphOptions pose_graph;
   FusionMode fusion = FusionMode::kLogOdds;
   int threads = 0;  // 0: all cores
+  // A map image announcing more cells is refused before decoding (see kDefaultMaxMapCells).
+  std::int64_t max_map_cells = kDefaultMaxMapCells;
 };
 
 }  // namespace fleetmerge
