@@ -78,7 +78,11 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
       component.maps.push_back(m);
       inputs.push_back({&result.maps[m], result.T_component_map[m]});
     }
-    if (inputs.size() >= 2 || maps.size() == 1) {
+    if (maps.size() == 1) {
+      // A one-map job: that map is the merged map, as it is (even all unknown, or 1 x 1 cell;
+      // compositing would crop it to its known cells).
+      component.merged = result.maps.front();
+    } else if (inputs.size() >= 2) {
       component.merged = Composite(inputs, result.resolution_m, options.fusion);
     }
     if (progress) progress("composite", static_cast<int>(c) + 1, int(result.components.size()));
