@@ -111,6 +111,23 @@ TEST_F(MergeHardeningTest, CellLimitFromCommandLineAndJobFile) {
   EXPECT_TRUE(fs::exists(dir_ / "o2" / "merged_0.yaml")) << "the other job still ran";
 }
 
+TEST_F(MergeHardeningTest, AbsurdResolutionRefusedBeforeResampling) {
+  // 1e-9 m per cell beside 0.05 m: robot_a would be resampled to 3e10 x 1.4e10 cells (the int
+  // conversion overflowed before the check).
+  std::string yaml = ReadFile(B());
+  yaml.replace(yaml.find("resolution: "),
+               yaml.find('\n', yaml.find("resolution: ")) - yaml.find("resolution: "),
+               "resolution: 1e-9");
+  WriteFile(dir_ / "ex" / "tiny_cells.yaml", yaml);
+  const auto run = Fleetmerge("merge --quiet --out " + ShellQuote(dir_ / "o") + " " +
+                              ShellQuote(A()) + " " + ShellQuote(dir_ / "ex" / "tiny_cells.yaml"));
+  EXPECT_EQ(run.exit_code, 1);
+  EXPECT_NE(run.err.find("map 1 (in job order), 600 x 276 cells of 0.05 m, would be 3e+10 x "
+                         "1.38e+10 cells at the job's resolution 1e-09 m, more than the limit"),
+            std::string::npos)
+      << run.err;
+}
+
 TEST_F(MergeHardeningTest, AnotherJobsResultsNeedForceAndForeignFilesAreKept) {
   const fs::path out = dir_ / "out";
   const std::string maps = ShellQuote(A()) + " " + ShellQuote(B());
