@@ -12,6 +12,13 @@
 
 namespace fleetmerge {
 
+// The largest map (in cells) loaded unless the user raises the limit (--max-map-cells, job key
+// max_map_cells): 10000 x 10000 cells, 500 m x 500 m at 5 cm, 40 times the largest real map we
+// have (gdc_floor2_full, 2.5 M cells). Merging holds several float/double images per map (Hough
+// voting, distance fields, FFT correlation), tens of bytes per cell, so this is already a
+// multi-gigabyte job; a corrupt header claiming 100000 x 100000 cells is refused outright.
+inline constexpr std::int64_t kDefaultMaxMapCells = 100'000'000;
+
 enum class CellState : std::uint8_t { kUnknown = 0, kFree = 1, kOccupied = 2 };
 
 class OccupancyGrid {

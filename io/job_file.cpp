@@ -26,7 +26,7 @@ namespace {
 const std::vector<std::string> kJobKeys = {
     "name", "maps", "output", "reference", "resolution", "threads", "hypotheses_per_pair",
     "omega_threshold", "min_overlap_cells", "min_wall_agreement", "refine", "seed", "hough", "translation",
-    "pose_graph", "fusion", "octree"};
+    "pose_graph", "fusion", "octree", "max_map_cells"};
 // clang-format on
 
 SamplingOptions ReadSampling(const YamlField& field, const YamlErrors& errors) {
@@ -96,6 +96,9 @@ void ReadOptions(const YamlMapping& job, FleetOptions& options, const YamlErrors
   }
   if (auto f = job.Find("min_overlap_cells")) {
     options.min_overlap_cells = ReadInteger(*f, 0, INT_MAX, errors);
+  }
+  if (auto f = job.Find("max_map_cells")) {
+    options.max_map_cells = ReadInteger(*f, 1, std::numeric_limits<std::int64_t>::max(), errors);
   }
   if (auto f = job.Find("refine")) options.pair.refine = ReadBool(*f, errors);
   if (auto f = job.Find("hough")) ReadHough(*f, hypotheses, errors);

@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <iostream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
 
 #include "core/error.hpp"
+#include "io/image_header.hpp"
+#include "io/native_stderr.hpp"
 #include "io/pnm_header.hpp"
 
 namespace fleetmerge {
@@ -21,21 +24,6 @@ constexpr std::uint8_t kFreePixel = 254;
 [[noreturn]] void FailImage(const fs::path& image_path, const fs::path& yaml_path,
                             const std::string& what) {
   throw Error(image_path.string() + ": " + what + " (the image of map " + yaml_path.string() + ")");
-}
-
-// Explains why cv::imread returned nothing.
-[[noreturn]] void FailUnreadable(const fs::path& image_path, const fs::path& yaml_path) {
-  std::error_code ec;
-  if (fs::file_size(image_path, ec) == 0 && !ec) {
-    FailImage(image_path, yaml_path, "is empty (0 bytes), expected a PGM or PNG image");
-  }
-  const std::optional<PnmHeader> header = ReadPnmHeader(image_path);
-  if (header && (header->width == 0 || header->height == 0)) {
-    FailImage(image_path, yaml_path,
-              "is an empty image (" + std::to_string(header->width) + " x " +
-                  std::to_string(header->height) + " pixels)");
-  }
-  FailImage(image_path, yaml_path, "is not a readable PGM/PNG image");
 }
 
 // Factor that brings samples onto 0..255. OpenCV already rescales 8-bit Netpbm files with a
@@ -82,6 +70,16 @@ CellState Classify(double value, bool opaque, const MapMetadata& metadata) {
   return Threshold(occupancy, metadata);
 }
 
+// The decoder's complaint without OpenCV's source location ("... error: (-2:...) what").
+std::string FirstLine(const std::string& text) {
+  std::string line = text.substr(0, text.find('\n'));
+  const std::size_t what = line.rfind(") ");
+  if (line.find("OpenCV(") != std::string::npos && what != std::string::npos) {
+    line = line.substr(what + 2);
+  }
+  return line;
+}
+
 std::string LowerExtension(const fs::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
@@ -91,14 +89,24 @@ std::string LowerExtension(const fs::path& path) {
 
 }  // namespace
 
-MapImage ReadMapImage(const fs::path& image_path, const fs::path& yaml_path) {
+MapImage ReadMapImage(const fs::path& image_path, const fs::path& yaml_path,
+                      std::int64_t max_cells) {
+  CheckImageHeader(image_path, yaml_path, max_cells);  // before OpenCV allocates anything
   cv::Mat raw;
-  try {
-    raw = cv::imread(image_path.string(), cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {
-    FailImage(image_path, yaml_path, "cannot be decoded: " + e.msg);
+  std::string decode_error;
+  const std::string library_text = CaptureNativeStderr([&] {
+    try {
+      raw = cv::imread(image_path.string(), cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception& e) {
+      decode_error = e.msg;
+    }
+  });
+  if (raw.empty()) {
+    const std::string detail = !decode_error.empty() ? decode_error : FirstLine(library_text);
+    FailImage(image_path, yaml_path,
+              "is not a readable PGM/PNG image" + (detail.empty() ? "" : " (" + detail + ")"));
   }
-  if (raw.empty()) FailUnreadable(image_path, yaml_path);
+  std::cerr << library_text;  // a decoder's warnings about an image that did load
   if (raw.depth() != CV_8U && raw.depth() != CV_16U) {
     FailImage(image_path, yaml_path,
               "has unsupported pixel depth (OpenCV depth " + std::to_string(raw.depth()) +

@@ -2,6 +2,7 @@
 // and encoding images for atomic writes.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <string>
@@ -24,11 +25,13 @@ struct MapImage {
   cv::Size size() const { return grey8.empty() ? value.size() : grey8.size(); }
 };
 
-// Decodes `image_path` (anything cv::imread reads: PGM P2/P5, PNG grey, grey+alpha, RGB, RGBA;
-// 8- or 16-bit). Throws fleetmerge::Error "<image_path>: ..." (mentioning `yaml_path`, the file
-// that named it) when the file is empty, not an image, or of an unsupported depth/channel count.
+// Decodes `image_path` (Netpbm or PNG as cv::imread reads them: PGM P2/P5, PNG grey,
+// grey+alpha, RGB, RGBA; 8- or 16-bit). Throws fleetmerge::Error "<image_path>: ..."
+// (mentioning `yaml_path`, the file that named it) when the file is empty, not an image, larger
+// than `max_cells` pixels or truncated (checked from its header before decoding: see
+// io/image_header.hpp), or of an unsupported depth/channel count.
 MapImage ReadMapImage(const std::filesystem::path& image_path,
-                      const std::filesystem::path& yaml_path);
+                      const std::filesystem::path& yaml_path, std::int64_t max_cells);
 
 // map_server's pixel -> occupancy rule (see LoadMap) applied to every pixel; the result has
 // grid rows, i.e. row j is image row (height - 1 - j).

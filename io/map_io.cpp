@@ -11,9 +11,9 @@
 namespace fleetmerge {
 namespace fs = std::filesystem;
 
-LoadedMap LoadMap(const fs::path& yaml_path) {
+LoadedMap LoadMap(const fs::path& yaml_path, std::int64_t max_cells) {
   MapMetadata metadata = ReadMapYaml(yaml_path);
-  const MapImage image = ReadMapImage(metadata.image_path, yaml_path);
+  const MapImage image = ReadMapImage(metadata.image_path, yaml_path, max_cells);
   const GridGeometry geometry(metadata.resolution_m, {image.size().width, image.size().height},
                               metadata.origin);
   OccupancyGrid grid(geometry, PixelsToCells(image, metadata));

@@ -3,6 +3,7 @@
 // semantics (see LoadMap); saving writes a trinary PGM and its YAML, each atomically.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -39,8 +40,10 @@ struct LoadedMap {
 //   raw:            v is an occupancy percentage; v > 100 -> unknown, else p = v / 100 as above.
 // Image row 0 is the top of the map, so grid row j is image row (height - 1 - j). The origin's
 // yaw is honoured (it becomes the geometry's T_map_grid). Throws fleetmerge::Error whose message
-// starts with the file's path and names the key or line and what was expected.
-LoadedMap LoadMap(const std::filesystem::path& yaml_path);
+// starts with the file's path and names the key or line and what was expected. An image whose
+// header announces more than `max_cells` pixels is refused before anything is decoded.
+LoadedMap LoadMap(const std::filesystem::path& yaml_path,
+                  std::int64_t max_cells = kDefaultMaxMapCells);
 
 // Writes `<stem>.pgm` (binary, trinary: occupied 0, unknown 205, free 254) beside `yaml_path`,
 // then the YAML (mode trinary, negate 0, occupied_thresh 0.65, free_thresh 0.196), each through

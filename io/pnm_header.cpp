@@ -48,10 +48,14 @@ std::optional<PnmHeader> ReadPnmHeader(const std::filesystem::path& path) {
   if (!width || !height) return std::nullopt;
   header.width = *width;
   header.height = *height;
-  if (header.kind == '1' || header.kind == '4') return header;
+  if (header.kind == '1' || header.kind == '4') {
+    header.data_offset = in.eof() ? -1 : static_cast<long long>(in.tellg());
+    return header;
+  }
   const std::optional<int> maxval = NextInt(in);
   if (!maxval) return std::nullopt;
   header.maxval = *maxval;
+  header.data_offset = in.eof() ? -1 : static_cast<long long>(in.tellg());
   return header;
 }
 

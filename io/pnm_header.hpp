@@ -13,6 +13,9 @@ struct PnmHeader {
   int width = 0;
   int height = 0;
   int maxval = 1;  // 1 for bitmaps (P1, P4)
+  // Bytes before the pixel data (the header and the one whitespace character that ends it);
+  // -1 when the file ends inside the header.
+  long long data_offset = 0;
 };
 
 // The header, or nullopt when the file does not start with a complete Netpbm header.

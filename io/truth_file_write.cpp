@@ -1,6 +1,5 @@
 #include <yaml-cpp/yaml.h>
 
-
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/truth_file.hpp"

@@ -38,6 +38,7 @@ class YamlErrors {
 std::string Describe(const YAML::Node& node);
 
 // The whole file; `kind` names it in errors ("map YAML file": "cannot open map YAML file: ...").
+// Refuses files over 16 MiB (the wrong file) and text that is not UTF-8 (naming line, column).
 std::string ReadYamlFileText(const std::filesystem::path& path, const std::string& kind,
                              const YamlErrors& errors);
 

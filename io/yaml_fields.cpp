@@ -69,8 +69,9 @@ std::string ReadString(const YamlField& field, const std::string& expected,
 long long ReadInteger(const YamlField& field, long long lo, long long hi,
                       const YamlErrors& errors) {
   const std::string expected =
-      hi == INT_MAX ? "an integer >= " + std::to_string(lo)
-                    : "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+      hi == INT_MAX || hi == LLONG_MAX
+          ? "an integer >= " + std::to_string(lo)
+          : "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   long long value = 0;
   if (!field.value.IsScalar() || field.value.Tag() == "!" ||
       !YAML::convert<long long>::decode(field.value, value) || value < lo || value > hi) {

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
 
 #include "core/error.hpp"
 #include "core/resample.hpp"
@@ -14,7 +17,23 @@ namespace fleetmerge {
 namespace {
 
 std::vector<OccupancyGrid> AtOneResolution(const std::vector<const OccupancyGrid*>& maps,
-                                           double resolution_m) {
+                                           double resolution_m, std::int64_t max_cells) {
+  // A map of absurd resolution (1e-9 m beside 0.05 m) would be resampled to an absurd size:
+  // refused with the same cell limit as the images, computed in double before any cast.
+  for (std::size_t m = 0; m < maps.size(); ++m) {
+    const double ratio = maps[m]->geometry().resolution_m() / resolution_m;
+    const double width = std::ceil(maps[m]->width() * ratio);
+    const double height = std::ceil(maps[m]->height() * ratio);
+    if (!(width * height <= static_cast<double>(max_cells))) {
+      std::ostringstream what;
+      what << "map " << m + 1 << " (in job order), " << maps[m]->width() << " x "
+           << maps[m]->height() << " cells of " << maps[m]->geometry().resolution_m()
+           << " m, would be " << width << " x " << height << " cells at the job's resolution "
+           << resolution_m << " m, more than the limit of " << max_cells
+           << " cells (check the maps' resolutions, or raise max_map_cells)";
+      throw Error(what.str());
+    }
+  }
   std::vector<OccupancyGrid> out;
   // A map already at resolution_m comes back as a copy (ResampleToResolution's contract).
   for (const OccupancyGrid* m : maps) out.push_back(ResampleToResolution(*m, resolution_m));
@@ -66,7 +85,7 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
       result.resolution_m = std::min(result.resolution_m, m->geometry().resolution_m());
     }
   }
-  result.maps = AtOneResolution(maps, result.resolution_m);
+  result.maps = AtOneResolution(maps, result.resolution_m, options.max_map_cells);
 
   auto start = std::chrono::steady_clock::now();
   // Hypotheses are ranked with the overlap an edge needs (HypothesisOptions::min_overlap_cells).
@@ -106,7 +125,11 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
       component.maps.push_back(m);
       inputs.push_back({&result.maps[m], result.T_component_map[m]});
     }
-    if (inputs.size() >= 2 || maps.size() == 1) {
+    if (maps.size() == 1) {
+      // A one-map job: that map is the merged map, as it is (even all unknown, or 1 x 1 cell;
+      // compositing would crop it to its known cells).
+      component.merged = result.maps.front();
+    } else if (inputs.size() >= 2) {
       component.merged = Composite(inputs, result.resolution_m, options.fusion);
     }
     if (progress) progress("composite", static_cast<int>(c) + 1, int(result.components.size()));

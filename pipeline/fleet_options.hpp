@@ -2,6 +2,9 @@
 // Filled from a job YAML by io/job_file.hpp (validated there) or from the command line.
 #pragma once
 
+#include <cstdint>
+
+#include "core/occupancy_grid.hpp"
 #include "octree/octree_options.hpp"
 #include "pipeline/composite.hpp"
 #include "pipeline/pair_merge.hpp"
@@ -22,6 +25,8 @@ struct FleetOptions {
   FusionMode fusion = FusionMode::kLogOdds;
   int threads = 0;       // 0: all cores
   OctreeOptions octree;  // floor plans of the job's octrees (.bt, .ot maps)
+  // A map image announcing more cells is refused before decoding (see kDefaultMaxMapCells).
+  std::int64_t max_map_cells = kDefaultMaxMapCells;
 };
 
 }  // namespace fleetmerge

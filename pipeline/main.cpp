@@ -57,6 +57,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(-10.0, 10.0))
       ->capture_default_str();
   merge_app->add_flag("--quiet", merge.quiet, "no progress output");
+  merge_app->add_flag("--force", merge.force,
+                      "replace an output folder that holds the results of another job");
+  merge_app
+      ->add_option("--max-map-cells", merge.options.max_map_cells,
+                   "refuse map images with more cells (checked before decoding)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   AddMethodOptions(*merge_app, merge.options.pair);
 
   ExampleCommand example;

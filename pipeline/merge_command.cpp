@@ -13,6 +13,7 @@
 #include "io/job_file.hpp"
 #include "io/map_io.hpp"
 #include "io/octree_io.hpp"
+#include "io/result_folder.hpp"
 #include "pipeline/fleet_merge.hpp"
 #include "pipeline/octree_maps.hpp"
 #include "pipeline/parallel.hpp"
@@ -41,19 +42,22 @@ ProgressFn MakeProgress(const std::string& job, bool quiet, std::ostream& err) {
   };
 }
 
-std::vector<std::string> WriteOutputs(const Job& job, const FleetResult& result,
-                                      const std::vector<std::filesystem::path>& protect) {
-  std::filesystem::create_directories(job.output_dir);
+// Writes the merged maps and previews into `dir` (the staging folder); returns each component's
+// merged map file name ("" for an unmerged one) and appends every file written to `written`.
+std::vector<std::string> WriteOutputs(const std::filesystem::path& dir, const FleetResult& result,
+                                      const std::vector<std::filesystem::path>& protect,
+                                      std::vector<std::string>& written) {
   std::vector<std::string> files(result.components.size());
   for (std::size_t c = 0; c < result.components.size(); ++c) {
     const FleetComponent& component = result.components[c];
     if (!component.merged) continue;
-    files[c] = "merged_" + std::to_string(c) + ".yaml";
-    SaveMap(*component.merged, job.output_dir / files[c], protect);
+    const std::string stem = "merged_" + std::to_string(c);
+    files[c] = stem + ".yaml";
+    SaveMap(*component.merged, dir / files[c], protect);
     std::vector<CompositeInput> inputs;
     for (int m : component.maps) inputs.push_back({&result.maps[m], result.T_component_map[m]});
-    SaveImage(ColourPreview(inputs, *component.merged),
-              job.output_dir / ("merged_" + std::to_string(c) + "_preview.png"), protect);
+    SaveImage(ColourPreview(inputs, *component.merged), dir / (stem + "_preview.png"), protect);
+    written.insert(written.end(), {stem + ".yaml", stem + ".pgm", stem + "_preview.png"});
   }
   return files;
 }
@@ -68,8 +72,8 @@ std::vector<LoadedMap> LoadMaps(const Job& job, int threads, std::vector<JobOctr
   ParallelFor(job.maps.size(), threads, [&](std::size_t m) {
     try {
       const auto& path = job.maps[m].path;
-      loaded[m] =
-          IsOctreePath(path) ? LoadOctreeMap(path, job.options.octree, octrees[m]) : LoadMap(path);
+      loaded[m] = IsOctreePath(path) ? LoadOctreeMap(path, job.options.octree, octrees[m])
+                                     : LoadMap(path, job.options.max_map_cells);
     } catch (...) {  // kept per map so that the first in job order is the one reported
       failures[m] = std::current_exception();
     }
@@ -82,7 +86,22 @@ std::vector<LoadedMap> LoadMaps(const Job& job, int threads, std::vector<JobOctr
   return out;
 }
 
-void RunJob(const Job& job, bool quiet, std::ostream& out, std::ostream& err) {
+// Who wrote an output folder (its manifest, io/result_folder.hpp): the job file and job name,
+// or for `--out` the set of maps. Rerunning the same job replaces its results; another job
+// needs --force.
+std::string JobIdentity(const Job& job) {
+  const auto canonical = [](const std::filesystem::path& path) {
+    std::error_code ec;
+    const std::filesystem::path c = std::filesystem::weakly_canonical(path, ec);
+    return (ec ? path : c).string();
+  };
+  if (!job.job_file.empty()) return "job '" + job.name + "' of " + canonical(job.job_file);
+  std::string maps = "maps";
+  for (const JobMap& map : job.maps) maps += " " + canonical(map.path);
+  return maps;
+}
+
+void RunJob(const Job& job, bool quiet, bool force, std::ostream& out, std::ostream& err) {
   const auto start = Clock::now();
   JobTiming timing;
   std::vector<JobOctree> octrees;
@@ -95,19 +114,30 @@ void RunJob(const Job& job, bool quiet, std::ostream& out, std::ostream& err) {
     if (job.maps[m].name == job.reference) reference = static_cast<int>(m);
   }
   timing.load_ms = MillisecondsSince(start);
+  // Checked before the work (a folder that may not be replaced fails the job now); every file
+  // then goes to a staging folder, swapped in as a whole (io/result_folder.hpp).
+  ResultFolder folder(job.output_dir, JobIdentity(job), force, protect);
   std::vector<const OccupancyGrid*> grids;
   for (const auto& l : loaded) grids.push_back(&l.grid);
   const FleetResult result =
       MergeFleet(grids, reference, job.options, MakeProgress(job.name, quiet, err));
 
   const auto write_start = Clock::now();
-  const std::vector<std::string> files = WriteOutputs(job, result, protect);
-  const OctreeOutputs octree_outputs = WriteMergedOctrees(job, result, octrees, protect);
+  std::vector<std::string> written;
+  const std::vector<std::string> files =
+      WriteOutputs(folder.staging_dir(), result, protect, written);
+  const OctreeOutputs octree_outputs =
+      WriteMergedOctrees(result, octrees, folder.staging_dir(), protect);
+  for (const auto& f : octree_outputs.merged_files) {
+    if (!f.empty()) written.push_back(f);
+  }
   timing.write_ms = MillisecondsSince(write_start);
   timing.total_ms = MillisecondsSince(start);
   nlohmann::json report = MakeReport(job, result, files, timing);
   AddOctreesToReport(report, octrees, octree_outputs);
-  WriteFileAtomically(job.output_dir / "report.json", report.dump(2) + "\n", protect);
+  WriteFileAtomically(folder.staging_dir() / "report.json", report.dump(2) + "\n", protect);
+  written.push_back("report.json");
+  folder.Publish(written);
 
   int merged = 0;
   for (const auto& c : result.components) merged += c.merged.has_value();
@@ -146,15 +176,13 @@ Job JobFromMapList(const MergeCommand& command) {
   return job;
 }
 
-int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::ostream& err) {
+int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::ostream& err,
+            bool force) {
   int failed = 0;
   for (const Job& job : jobs) {
     try {
-      RunJob(job, quiet, out, err);
-    } catch (const Error& e) {
-      ++failed;
-      err << "fleetmerge: job '" << job.name << "' failed: " << e.what() << "\n";
-    } catch (const std::filesystem::filesystem_error& e) {
+      RunJob(job, quiet, force, out, err);
+    } catch (const std::exception& e) {  // Error, filesystem_error, bad_alloc, cv::Exception
       ++failed;
       err << "fleetmerge: job '" << job.name << "' failed: " << e.what() << "\n";
     }
@@ -173,7 +201,7 @@ int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream
       for (Job& job : LoadJobFile(file)) jobs.push_back(std::move(job));
     }
   }
-  return RunJobs(jobs, command.quiet, out, err);
+  return RunJobs(jobs, command.quiet, out, err, command.force);
 }
 
 }  // namespace fleetmerge

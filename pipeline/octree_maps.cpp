@@ -62,8 +62,8 @@ std::vector<std::optional<double>> VerticalOffsets(const FleetResult& result,
   return z_m;
 }
 
-OctreeOutputs WriteMergedOctrees(const Job& job, const FleetResult& result,
-                                 const std::vector<JobOctree>& octrees,
+OctreeOutputs WriteMergedOctrees(const FleetResult& result, const std::vector<JobOctree>& octrees,
+                                 const std::filesystem::path& dir,
                                  const std::vector<std::filesystem::path>& protect) {
   const auto start = std::chrono::steady_clock::now();
   OctreeOutputs out;
@@ -82,7 +82,7 @@ OctreeOutputs WriteMergedOctrees(const Job& job, const FleetResult& result,
     }
     if (inputs.empty()) continue;
     out.merged_files[c] = "merged_" + std::to_string(c) + ".bt";
-    SaveOctree(*MergeOctrees(inputs, resolution_m), job.output_dir / out.merged_files[c], protect);
+    SaveOctree(*MergeOctrees(inputs, resolution_m), dir / out.merged_files[c], protect);
   }
   out.write_ms = MillisecondsSince(start);
   return out;

@@ -48,10 +48,10 @@ struct OctreeOutputs {
   double write_ms = 0.0;                   // merging and writing the octrees
 };
 
-// `octrees` has one entry per job map. Writes merged_<c>.bt for each component that has an
+// `octrees` has one entry per job map. Writes dir/merged_<c>.bt for each component that has an
 // octree and is merged (two or more maps, or a one-map job), atomically, never over `protect`.
-OctreeOutputs WriteMergedOctrees(const Job& job, const FleetResult& result,
-                                 const std::vector<JobOctree>& octrees,
+OctreeOutputs WriteMergedOctrees(const FleetResult& result, const std::vector<JobOctree>& octrees,
+                                 const std::filesystem::path& dir,
                                  const std::vector<std::filesystem::path>& protect);
 
 // report.json additions: maps[m].pose.z and maps[m].floor_z for octrees, components[c].

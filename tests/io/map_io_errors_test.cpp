@@ -241,15 +241,17 @@ std::string ImageError(const fs::path& dir, const std::string& name, const std::
 }
 
 TEST_F(MapIoErrorsTest, ImageNotAnImage) {
+  // Refused by their magic bytes, before any decoder sees them.
   EXPECT_TRUE(Contains(ImageError(dir_, "fake.pgm", "hello, I am text\n"),
-                       "is not a readable PGM/PNG image"));
-  EXPECT_TRUE(Contains(ImageError(dir_, "fake.png", "not a png at all"),
-                       "is not a readable PGM/PNG image"));
+                       "is not a PGM or PNG image (it starts with bytes 68 65 6c 6c 6f 2c 20 49)"));
+  EXPECT_TRUE(
+      Contains(ImageError(dir_, "fake.png", "not a png at all"), "is not a PGM or PNG image"));
 }
 
 TEST_F(MapIoErrorsTest, TruncatedImages) {
   EXPECT_TRUE(Contains(ImageError(dir_, "short.pgm", "P5\n4 4\n255\n\x01\x02"),
-                       "is not a readable PGM/PNG image"));
+                       "is truncated: its header announces 4 x 4 pixels (16 bytes of pixel data) "
+                       "but only 2 bytes follow it"));
   const std::string png = ft::ReadFile(ft::FixtureDir() / "tiny_grey_alpha.png");
   EXPECT_TRUE(Contains(ImageError(dir_, "short.png", png.substr(0, 40)),
                        "is not a readable PGM/PNG image"));
@@ -263,11 +265,27 @@ TEST_F(MapIoErrorsTest, EmptyImages) {
       Contains(ImageError(dir_, "flat.pgm", "P2\n3 0\n255\n"), "is an empty image (3 x 0 pixels)"));
 }
 
-TEST_F(MapIoErrorsTest, UnsupportedPixelDepth) {
-  // A one-pixel grey Portable FloatMap: OpenCV decodes it as 32-bit float.
+TEST_F(MapIoErrorsTest, OtherFormatsRefusedByMagic) {
+  // A one-pixel grey Portable FloatMap (OpenCV would decode it as 32-bit float): only Netpbm
+  // and PNG reach a decoder.
   const std::string pfm = std::string("Pf\n1 1\n-1.0\n") + std::string("\x00\x00\x00\x3f", 4);
   EXPECT_TRUE(Contains(ImageError(dir_, "float.pfm", pfm),
-                       "has unsupported pixel depth (OpenCV depth 5), expected 8- or 16-bit"));
+                       "is not a PGM or PNG image (it starts with bytes 50 66"));
+}
+
+TEST_F(MapIoErrorsTest, CellLimitBeforeDecoding) {
+  // 3 x 2 pixels: loads with a limit of 6 cells, refused with 5, naming the limit's knobs.
+  ft::WriteFile(dir_ / "small.pgm", "P5\n3 2\n255\n" + std::string(6, '\xfe'));
+  ft::WriteFile(dir_ / "small.yaml", ft::MapYaml("small.pgm"));
+  EXPECT_EQ(LoadMap(dir_ / "small.yaml", 6).grid.width(), 3);
+  try {
+    LoadMap(dir_ / "small.yaml", 5);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_TRUE(Contains(e.what(),
+                         "small.pgm: is 3 x 2 = 6 cells, more than the limit of 5 cells "
+                         "(raise it with --max-map-cells or the job key max_map_cells)"));
+  }
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "tests/support/shared_data.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <random>
 
@@ -34,6 +36,15 @@ std::filesystem::path MakeTempDir(const std::string& name) {
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+int ScaledCount(int full, int minimum) {
+  double scale = 1.0;
+  if (const char* env = std::getenv("FLEETMERGE_TEST_SCALE"); env != nullptr && *env != '\0') {
+    scale = std::strtod(env, nullptr);
+    if (!(scale > 0.0 && scale <= 1.0)) scale = 1.0;
+  }
+  return std::max(minimum, static_cast<int>(std::lround(full * scale)));
 }
 
 }  // namespace fleetmerge::testing

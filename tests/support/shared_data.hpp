@@ -3,11 +3,11 @@
 // message naming the folder, never silently passed.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <optional>
 #include <string>
-
-#include <gtest/gtest.h>
 
 namespace fleetmerge::testing {
 
@@ -16,16 +16,20 @@ namespace fleetmerge::testing {
 std::optional<std::filesystem::path> SharedMapsDir();
 std::string SharedMapsDirDescription();
 
+// `full` scaled by FLEETMERGE_TEST_SCALE (a number in (0, 1], default 1), at least `minimum`:
+// the sanitizer build runs the heavy accuracy tests with fewer trials (every test still runs).
+int ScaledCount(int full, int minimum);
+
 // A fresh, empty folder for one test's files.
 std::filesystem::path MakeTempDir(const std::string& name);
 
 }  // namespace fleetmerge::testing
 
-#define FLEETMERGE_REQUIRE_SHARED_MAPS()                                              \
-  do {                                                                                \
-    if (!::fleetmerge::testing::SharedMapsDir()) {                                    \
-      GTEST_SKIP() << "SKIPPED: shared maps not found at "                           \
-                   << ::fleetmerge::testing::SharedMapsDirDescription()               \
+#define FLEETMERGE_REQUIRE_SHARED_MAPS()                                                \
+  do {                                                                                  \
+    if (!::fleetmerge::testing::SharedMapsDir()) {                                      \
+      GTEST_SKIP() << "SKIPPED: shared maps not found at "                              \
+                   << ::fleetmerge::testing::SharedMapsDirDescription()                 \
                    << " (set FLEETMERGE_SHARED_MAPS or put ../shared beside the repo)"; \
-    }                                                                                 \
+    }                                                                                   \
   } while (0)

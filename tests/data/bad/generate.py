@@ -1,0 +1,193 @@
+#!/usr/bin/env python3
+"""Writes the catalogue of malformed inputs in this folder: one folder per case holding the
+input files and case.txt (reader, input, the text its error must contain). Run from anywhere;
+the files are checked in, this script documents how each was made and rebuilds them.
+tests/io/bad_inputs_test.cpp runs every case; fuzzer regressions live in tests/fuzz/regressions.
+"""
+import os
+import shutil
+import struct
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+GOOD_MAP = ("image: {image}\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n"
+            "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+
+
+def png(width, height, rows=None, colour_type=0, bit_depth=8, ihdr=None):
+    def chunk(kind, data):
+        return (struct.pack(">I", len(data)) + kind + data +
+                struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff))
+    if rows is None:
+        rows = [bytes([254] * width) for _ in range(height)]
+    raw = b"".join(b"\x00" + r for r in rows)
+    header = ihdr or struct.pack(">IIBBBBB", width, height, bit_depth, colour_type, 0, 0, 0)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw)) +
+            chunk(b"IEND", b""))
+
+
+GOOD_PNG = png(4, 3)
+GOOD_PGM = b"P5\n4 3\n255\n" + bytes([0, 254, 205, 254, 254, 254, 0, 205, 205, 0, 254, 254])
+
+# name: (reader, {file: bytes}, input, expected error text)
+CASES = {}
+
+
+def map_case(name, image_bytes, expect, image="map.pgm", yaml=None):
+    files = {"map.yaml": (yaml if yaml is not None else GOOD_MAP.format(image=image)).encode()
+             if isinstance(yaml, (str, type(None))) else yaml}
+    if image_bytes is not None:
+        files[image] = image_bytes
+    CASES[name] = ("map", files, "map.yaml", expect)
+
+
+# --- images ---------------------------------------------------------------------------------
+map_case("pgm_truncated_pixels", GOOD_PGM[:-5], "is truncated")
+map_case("pgm_header_only", b"P5\n4 3\n255\n", "is truncated")
+map_case("pgm_cut_in_header", b"P5\n4 3\n25", "is truncated")  # maxval 25, then nothing
+map_case("pgm_cut_in_size", b"P5\n4 3", "malformed or incomplete Netpbm")
+map_case("pgm_huge_size", b"P5\n100000 100000\n255\n" + bytes(64), "more than the limit")
+map_case("pgm_negative_size", b"P5\n-4 3\n255\n" + bytes(12), "malformed or incomplete Netpbm")
+map_case("pgm_absurd_digits", b"P5\n99999999999 3\n255\n" + bytes(12),
+         "malformed or incomplete Netpbm")
+map_case("pgm_zero_width", b"P5\n0 3\n255\n", "is an empty image")
+map_case("pgm_maxval_zero", b"P5\n4 3\n0\n" + bytes(12), "has maxval 0")
+map_case("pgm_maxval_too_big", b"P5\n4 3\n70000\n" + bytes(24), "has maxval 70000")
+map_case("pgm_16bit_truncated", b"P5\n4 3\n65535\n" + bytes(20), "is truncated")
+map_case("pgm_wrong_magic", b"P9\n4 3\n255\n" + bytes(12), "is not a PGM or PNG image")
+map_case("pgm_lowercase_magic", b"p5\n4 3\n255\n" + bytes(12), "is not a PGM or PNG image")
+map_case("ppm_truncated", b"P6\n4 3\n255\n" + bytes(30), "is truncated")
+map_case("pbm_truncated", b"P4\n16 3\n" + bytes(4), "is truncated")
+map_case("p2_truncated", b"P2\n4 3\n255\n0 254 205", "is not a readable PGM/PNG image")
+map_case("p2_letters", b"P2\n2 2\n255\n0 abc 3 4\n", "is not a readable PGM/PNG image")
+map_case("image_empty", b"", "is empty (0 bytes)")
+map_case("image_text", b"hello, this is not an image\n", "is not a PGM or PNG image")
+map_case("image_jpeg_magic", b"\xff\xd8\xff\xe0" + bytes(64), "is not a PGM or PNG image",
+         image="map.jpg")
+map_case("image_one_byte", b"P", "is not a PGM or PNG image")
+map_case("png_signature_only", GOOD_PNG[:8], "truncated or corrupt PNG")
+map_case("png_cut_in_ihdr", GOOD_PNG[:20], "truncated or corrupt PNG", image="map.png")
+map_case("png_cut_in_data", GOOD_PNG[:45], "is not a readable PGM/PNG image", image="map.png")
+map_case("png_huge_size", png(4, 3, ihdr=struct.pack(">IIBBBBB", 100000, 100000, 8, 0, 0, 0, 0)),
+         "more than the limit", image="map.png")
+map_case("png_max_size", png(4, 3, ihdr=struct.pack(">IIBBBBB", 0xffffffff, 0xffffffff, 8, 0, 0,
+                                                     0, 0)),
+         "more than the limit", image="map.png")
+map_case("png_zero_height", png(4, 3, ihdr=struct.pack(">IIBBBBB", 4, 0, 8, 0, 0, 0, 0)),
+         "is an empty image", image="map.png")
+corrupt = bytearray(GOOD_PNG)
+corrupt[41:49] = b"\xff" * 8  # inside the compressed IDAT
+map_case("png_corrupt_data", bytes(corrupt), "is not a readable PGM/PNG image", image="map.png")
+map_case("png_named_pgm", GOOD_PNG, None)  # decoded by content: loads (see case.txt 'loads')
+map_case("image_is_the_yaml", None, "is not a PGM or PNG image", image="map.yaml")
+
+# --- map YAML -------------------------------------------------------------------------------
+def yaml_case(name, text, expect):
+    map_case(name, GOOD_PGM, expect, yaml=text)
+
+
+yaml_case("yaml_empty", b"", "expected a mapping")
+yaml_case("yaml_not_utf8", b"image: map.pgm\nresolution: 0.05\xff\xfe\norigin: [0, 0, 0]\n",
+          "line 2, column 17: not valid UTF-8")
+yaml_case("yaml_not_utf8_key", b"ima\xc3\x28ge: map.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n",
+          "line 1, column 4: not valid UTF-8")
+yaml_case("yaml_latin1_image_name", b"image: m\xe4p.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n",
+          "not valid UTF-8")
+yaml_case("yaml_overlong_utf8", b"image: map.pgm\nresolution: 0.05\xc0\xaf\norigin: [0, 0, 0]\n",
+          "not valid UTF-8")
+yaml_case("yaml_binary", bytes(range(256)), "not valid UTF-8")
+yaml_case("yaml_nan_resolution", "image: map.pgm\nresolution: .nan\norigin: [0, 0, 0]\n",
+          "expected a finite number")
+yaml_case("yaml_inf_origin", "image: map.pgm\nresolution: 0.05\norigin: [.inf, 0, 0]\n",
+          "expected a finite number")
+yaml_case("yaml_nan_yaw", "image: map.pgm\nresolution: 0.05\norigin: [0, 0, .NaN]\n",
+          "expected a finite number")
+yaml_case("yaml_negative_resolution", "image: map.pgm\nresolution: -0.05\norigin: [0, 0, 0]\n",
+          "expected a number > 0")
+yaml_case("yaml_zero_resolution", "image: map.pgm\nresolution: 0\norigin: [0, 0, 0]\n",
+          "expected a number > 0")
+yaml_case("yaml_truncated", "image: map.pgm\nresolution: 0.05\norigin: [0.0, 0.",
+          "malformed YAML")
+yaml_case("yaml_origin_two", "image: map.pgm\nresolution: 0.05\norigin: [0, 0]\n",
+          "expected a list of 3 numbers")
+yaml_case("yaml_origin_text", "image: map.pgm\nresolution: 0.05\norigin: here\n",
+          "expected a list of 3 numbers")
+yaml_case("yaml_duplicate_key", "image: map.pgm\nresolution: 0.05\nresolution: 0.1\n"
+          "origin: [0, 0, 0]\n", "resolution")
+yaml_case("yaml_missing_image", "resolution: 0.05\norigin: [0, 0, 0]\n",
+          "missing required key 'image'")
+yaml_case("yaml_image_missing_file", "image: nowhere.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n",
+          "does not exist")
+yaml_case("yaml_deep_nesting", "image: map.pgm\nresolution: 0.05\norigin: " + "[" * 20000 +
+          "]" * 20000 + "\n", "map.yaml")
+yaml_case("yaml_list", "- image: map.pgm\n- resolution: 0.05\n", "expected a mapping")
+yaml_case("yaml_thresholds_swapped", "image: map.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n"
+          "occupied_thresh: 0.1\nfree_thresh: 0.9\n", "expected free_thresh < occupied_thresh")
+yaml_case("yaml_threshold_nan", "image: map.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n"
+          "occupied_thresh: .nan\n", "expected a finite number")
+
+# --- job files ------------------------------------------------------------------------------
+def job_case(name, text, expect, maps=("a", "b")):
+    files = {"job.yaml": text.encode() if isinstance(text, str) else text}
+    for m in maps:
+        files[m + ".yaml"] = GOOD_MAP.format(image=m + ".pgm").encode()
+        files[m + ".pgm"] = GOOD_PGM
+    CASES[name] = ("job", files, "job.yaml", expect)
+
+
+job_case("job_empty", "", "expected a job")
+job_case("job_same_file_twice", "maps: [a.yaml, {path: ./a.yaml, name: again}]\noutput: out\n",
+         "is the same file as")
+job_case("job_duplicate_names", "maps:\n  - {path: a.yaml, name: r1}\n  - {path: b.yaml, name: r1}\n"
+         "output: out\n", "map name 'r1' is also the name of")
+job_case("job_no_maps", "maps: []\noutput: out\n", "a non-empty list of map YAML files")
+job_case("job_missing_output", "maps: [a.yaml, b.yaml]\n", "missing")
+job_case("job_nan_threshold", "maps: [a.yaml, b.yaml]\noutput: out\nomega_threshold: .nan\n",
+         "omega_threshold")
+job_case("job_inf_resolution", "maps: [a.yaml, b.yaml]\noutput: out\nresolution: .inf\n",
+         "resolution")
+job_case("job_negative_threads", "maps: [a.yaml, b.yaml]\noutput: out\nthreads: -3\n", "threads")
+job_case("job_max_map_cells_zero", "maps: [a.yaml, b.yaml]\noutput: out\nmax_map_cells: 0\n",
+         "max_map_cells")
+job_case("job_max_map_cells_text", "maps: [a.yaml, b.yaml]\noutput: out\nmax_map_cells: lots\n",
+         "max_map_cells")
+job_case("job_huge_integer", "maps: [a.yaml, b.yaml]\noutput: out\nseed: 99999999999999999999999\n",
+         "seed")
+job_case("job_unknown_key", "maps: [a.yaml, b.yaml]\noutput: out\nomega_treshold: 0.9\n",
+         "omega_treshold")
+job_case("job_not_utf8", b"maps: [a.yaml, b.yaml]\noutput: o\xff\xfeut\nname: \xc3\x28\n",
+         "not valid UTF-8")
+job_case("job_truncated", "jobs:\n  - maps: [a.yaml, b.yaml]\n    output: [out", "malformed YAML")
+job_case("job_missing_map_file", "maps: [a.yaml, gone.yaml]\noutput: out\n", "gone.yaml")
+job_case("job_bad_map_inside", "maps: [a.yaml, bad.yaml]\noutput: out\n", "bad.yaml")
+CASES["job_bad_map_inside"][1]["bad.yaml"] = b"image: a.pgm\nresolution: .nan\norigin: [0,0,0]\n"
+job_case("jobs_same_output", "jobs:\n  - {maps: [a.yaml], output: out}\n"
+         "  - {maps: [b.yaml], output: ./out/}\n", "is also the output folder of")
+job_case("jobs_same_name", "jobs:\n  - {name: x, maps: [a.yaml], output: o1}\n"
+         "  - {name: x, maps: [b.yaml], output: o2}\n", "job name 'x' is also the name of")
+job_case("jobs_empty_list", "jobs: []\n", "a non-empty list of jobs")
+job_case("job_reference_unknown", "maps: [a.yaml, b.yaml]\noutput: out\nreference: c\n",
+         "reference")
+job_case("job_deep_nesting", "maps: " + "[" * 20000 + "]" * 20000 + "\noutput: out\n", "job.yaml")
+job_case("job_output_is_a_file", "maps: [a.yaml, b.yaml]\noutput: a.pgm\n",
+         "exists and is not a folder")
+
+
+def main():
+    for entry in os.listdir(HERE):
+        if os.path.isdir(os.path.join(HERE, entry)):
+            shutil.rmtree(os.path.join(HERE, entry))
+    for name, (reader, files, entry, expect) in sorted(CASES.items()):
+        folder = os.path.join(HERE, name)
+        os.makedirs(folder)
+        for file, data in files.items():
+            with open(os.path.join(folder, file), "wb") as out:
+                out.write(data)
+        with open(os.path.join(folder, "case.txt"), "w") as out:
+            out.write(f"reader: {reader}\ninput: {entry}\n")
+            out.write(f"error: {expect}\n" if expect is not None else "loads\n")
+    print(f"{len(CASES)} cases written to {HERE}")
+
+
+if __name__ == "__main__":
+    main()

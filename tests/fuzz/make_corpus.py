@@ -1,0 +1,59 @@
+#!/usr/bin/env python3
+"""Writes the fuzzers' seed corpus (tests/fuzz/corpus/<target>) from tests/data: every map
+fixture and every map case of the malformed catalogue becomes "<yaml>\\n#IMAGE#\\n<image bytes>"
+with the YAML's image renamed image.pgm (map_fuzzer.cpp); every job case of the catalogue and a
+few valid job files become job seeds (job_fuzzer.cpp writes a.yaml/b.yaml beside them)."""
+import os
+import re
+import shutil
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, "..", "data")
+
+
+def map_seed(yaml_path):
+    text = open(yaml_path, "rb").read()
+    match = re.search(rb"^image:\s*(\S+)", text, re.M)
+    image = b""
+    if match:
+        image_path = os.path.join(os.path.dirname(yaml_path), match.group(1).decode("utf-8", "replace"))
+        if os.path.isfile(image_path):
+            image = open(image_path, "rb").read()
+        text = text[:match.start(1)] + b"image.pgm" + text[match.end(1):]
+    return text + b"\n#IMAGE#\n" + image
+
+
+def main():
+    seeds = {"map": {}, "job": {}}
+    fixtures = os.path.join(DATA, "maps")
+    for name in sorted(os.listdir(fixtures)):
+        if name.endswith(".yaml"):
+            seeds["map"]["fixture_" + name[:-5]] = map_seed(os.path.join(fixtures, name))
+    bad = os.path.join(DATA, "bad")
+    for case in sorted(os.listdir(bad)):
+        folder = os.path.join(bad, case)
+        if not os.path.isfile(os.path.join(folder, "case.txt")):
+            continue
+        if os.path.isfile(os.path.join(folder, "job.yaml")):
+            seeds["job"]["bad_" + case] = open(os.path.join(folder, "job.yaml"), "rb").read()
+        elif os.path.isfile(os.path.join(folder, "map.yaml")):
+            seeds["map"]["bad_" + case] = map_seed(os.path.join(folder, "map.yaml"))
+    seeds["job"]["good_one_job"] = (b"name: pair\nmaps: [a.yaml, {path: b.yaml, name: robot_b}]\n"
+                                    b"output: out\nreference: robot_b\nthreads: 2\n"
+                                    b"max_map_cells: 1000\nhough: {n_theta: 90, rho_step: 2, "
+                                    b"sampling: 'random:0.5'}\ntranslation: {method: spectra}\n"
+                                    b"pose_graph: {loss: huber, loss_scale: 0.5}\nfusion: max\n")
+    seeds["job"]["good_two_jobs"] = (b"jobs:\n  - {name: one, maps: [a.yaml], output: o1}\n"
+                                     b"  - {name: two, maps: [a.yaml, b.yaml], output: o2, "
+                                     b"omega_threshold: 0.8, seed: 7, refine: false}\n")
+    for target, files in seeds.items():
+        folder = os.path.join(HERE, "corpus", target)
+        shutil.rmtree(folder, ignore_errors=True)
+        os.makedirs(folder)
+        for name, data in files.items():
+            open(os.path.join(folder, name), "wb").write(data)
+        print(f"{len(files)} {target} seeds in {folder}")
+
+
+if __name__ == "__main__":
+    main()
