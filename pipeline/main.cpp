@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "pipeline/bench_command.hpp"
 #include "pipeline/cli_options.hpp"
+#include "pipeline/demo_command.hpp"
 #include "pipeline/eval_command.hpp"
 #include "pipeline/example_command.hpp"
 #include "pipeline/merge_command.hpp"
@@ -74,6 +75,9 @@ int main(int argc, char** argv) {
   example_app->add_flag("--octree", example.octree,
                         "two OctoMap octrees (.bt) of one storey, with truth.yaml and job.yaml");
 
+  DemoCommand demo;
+  CLI::App* demo_app = AddDemoCommand(app, demo);
+
   SimulateCommand simulate;
   CLI::App* simulate_app = AddSimulateCommand(app, simulate);
 
@@ -130,6 +134,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
+    if (demo_app->parsed()) return RunDemoCommand(demo, std::cout, std::cerr);
     if (merge_app->parsed()) return RunMergeCommand(merge, std::cout, std::cerr);
     if (pair_app->parsed()) return RunPairCommand(pair, std::cout);
     if (example_app->parsed()) return RunExampleCommand(example, std::cout);
