@@ -144,9 +144,8 @@ void ResolveTriangleConflicts(int map_count, std::vector<PairOutcome>& pairs,
       const int margin = contradict - support;
       // Equal margins: the pair with the weaker walls goes first (two wrong edges of one map
       // contradict each other's right neighbours as much as themselves).
-      if (margin > worst_margin ||
-          (margin == worst_margin && worst >= 0 &&
-           pairs[k].wall_agreement < pairs[worst].wall_agreement)) {
+      if (margin > worst_margin || (margin == worst_margin && worst >= 0 &&
+                                    pairs[k].wall_agreement < pairs[worst].wall_agreement)) {
         worst = k, worst_margin = margin;
       }
     }
