@@ -1,7 +1,9 @@
 // Ground truth on real maps: two overlapping parts cut from one map, the second re-framed by a
 // seeded random rigid motion and resampled (pipeline/ground_truth_pair.hpp). The best hypothesis
-// must be within 1 degree and 3 cells (mean displacement of b's walls) in >= 95 of 100 trials per
-// map; the fine rate (0.25 degree, 1 cell) is asserted at >= 80 %.
+// must be within 1 degree and 3 cells (mean displacement of b's walls) in >= 95 % of the trials
+// per map; the fine rate (0.25 degree, 1 cell) is asserted at >= 80 %. CI runs the first 30
+// trials of each map (its time budget); FLEETMERGE_FULL_ACCURACY=1 runs the 100 that the README
+// quotes (the first 30 are the same trials).
 //
 // FLEETMERGE_ACCURACY_METHOD=spectra or =spectra-unrefined runs the same trials with the paper's
 // X/Y-spectra translation (with or without our refinement) to compare the methods; the printed
@@ -24,7 +26,11 @@
 namespace fleetmerge {
 namespace {
 
-constexpr int kTrials = 100;
+// Trials per map: 30 by default, 100 with FLEETMERGE_FULL_ACCURACY=1.
+int TrialsPerMap() {
+  const char* full = std::getenv("FLEETMERGE_FULL_ACCURACY");
+  return full != nullptr && std::string(full) == "1" ? 100 : 30;
+}
 
 // Trials 0..5 cover the special angles; the rest are uniform in [-pi, pi).
 double TrialYaw(int trial, std::mt19937& rng) {
@@ -80,7 +86,7 @@ TEST_P(PairAccuracy, BestHypothesisWithinOneDegreeAndThreeCells) {
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   const LoadedMap map = LoadMap(*testing::SharedMapsDir() / GetParam());
   // FLEETMERGE_TEST_SCALE (sanitizer build): fewer trials, never fewer than the 6 special angles.
-  const Tally t = RunTrials(map.grid, 42, testing::ScaledCount(kTrials, 6));
+  const Tally t = RunTrials(map.grid, 42, testing::ScaledCount(TrialsPerMap(), 6));
   std::printf(
       "[ accuracy ] %-24s coarse (1 deg, 3 cells) %d/%d, fine (0.25 deg, 1 cell) %d/%d, "
       "median yaw error %.3f deg, median displacement %.2f cells\n",
