@@ -8,7 +8,7 @@ jobs=$(nproc 2>/dev/null || echo 2)
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S . -B build-asan -DFLEETMERGE_SANITIZE=ON -DFLEETMERGE_BUILD_BENCHMARKS=OFF \
-  -DCMAKE_BUILD_TYPE= -DCMAKE_CXX_FLAGS="-O1 -g" "${launcher[@]}"
+  -DCMAKE_BUILD_TYPE= -DCMAKE_CXX_FLAGS="-O1 -g1" "${launcher[@]}"
 cmake --build build-asan -j"$jobs"
 # detect_leaks: OpenCV's and Ceres's process-lifetime singletons are not leaks we can fix, but
 # our own are: leak checking stays on. halt_on_error: the first report fails the test.
