@@ -2,7 +2,9 @@
 """Writes the fuzzers' seed corpus (tests/fuzz/corpus/<target>) from tests/data: every map
 fixture and every map case of the malformed catalogue becomes "<yaml>\\n#IMAGE#\\n<image bytes>"
 with the YAML's image renamed image.pgm (map_fuzzer.cpp); every job case of the catalogue and a
-few valid job files become job seeds (job_fuzzer.cpp writes a.yaml/b.yaml beside them)."""
+few valid job files become job seeds (job_fuzzer.cpp writes a.yaml/b.yaml beside them); the small
+valid octrees in tests/data/octree (written by OctoMap) and every octree case of the catalogue
+become octree seeds (octree_fuzzer.cpp reads each as a .bt and as a .ot)."""
 import os
 import re
 import shutil
@@ -24,7 +26,12 @@ def map_seed(yaml_path):
 
 
 def main():
-    seeds = {"map": {}, "job": {}}
+    seeds = {"map": {}, "job": {}, "octree": {}}
+    octrees = os.path.join(DATA, "octree")
+    for name in sorted(os.listdir(octrees)):
+        if name.endswith((".bt", ".ot")):
+            seeds["octree"]["valid_" + name.replace(".", "_")] = open(
+                os.path.join(octrees, name), "rb").read()
     fixtures = os.path.join(DATA, "maps")
     for name in sorted(os.listdir(fixtures)):
         if name.endswith(".yaml"):
@@ -38,6 +45,9 @@ def main():
             seeds["job"]["bad_" + case] = open(os.path.join(folder, "job.yaml"), "rb").read()
         elif os.path.isfile(os.path.join(folder, "map.yaml")):
             seeds["map"]["bad_" + case] = map_seed(os.path.join(folder, "map.yaml"))
+        for tree in ("tree.bt", "tree.ot"):
+            if os.path.isfile(os.path.join(folder, tree)):
+                seeds["octree"]["bad_" + case] = open(os.path.join(folder, tree), "rb").read()
     seeds["job"]["good_one_job"] = (b"name: pair\nmaps: [a.yaml, {path: b.yaml, name: robot_b}]\n"
                                     b"output: out\nreference: robot_b\nthreads: 2\n"
                                     b"max_map_cells: 1000\nhough: {n_theta: 90, rho_step: 2, "

@@ -3,9 +3,10 @@
 // (OpenCV and yaml-cpp must not write their own messages to stderr), and never crash. A case
 // whose case.txt says `loads` must load.
 //
-// Each case names its reader; a new input format (e.g. octree files) is one more entry in
+// Each case names its reader (map, job, octree); a new input format is one more entry in
 // Readers() and more folders made by generate.py.
 #include <gtest/gtest.h>
+#include <octomap/OcTree.h>
 
 #include <filesystem>
 #include <fstream>
@@ -17,6 +18,7 @@
 #include "core/error.hpp"
 #include "io/job_file.hpp"
 #include "io/map_io.hpp"
+#include "io/octree_io.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -26,6 +28,7 @@ const std::map<std::string, std::function<void(const fs::path&)>>& Readers() {
   static const std::map<std::string, std::function<void(const fs::path&)>> readers = {
       {"map", [](const fs::path& path) { LoadMap(path); }},
       {"job", [](const fs::path& path) { LoadJobFile(path); }},
+      {"octree", [](const fs::path& path) { LoadOctree(path); }},
   };
   return readers;
 }

@@ -173,6 +173,90 @@ job_case("job_output_is_a_file", "maps: [a.yaml, b.yaml]\noutput: a.pgm\n",
          "exists and is not a folder")
 
 
+# --- octrees (.bt, .ot) -------------------------------------------------------------------------
+# Cut and corrupted from the small valid octrees OctoMap wrote through SaveOctree
+# (tests/data/octree, made by write_small_octrees.cpp: 71 nodes, 48 leaves).
+OCTREES = os.path.join(HERE, "..", "octree")
+SMALL_BT = open(os.path.join(OCTREES, "small.bt"), "rb").read()
+SMALL_OT = open(os.path.join(OCTREES, "small.ot"), "rb").read()
+
+
+def octree_case(name, data, expect, file="tree.bt"):
+    CASES[name] = ("octree", {file: data}, file, expect)
+
+
+def header_of(tree):
+    return tree[:tree.index(b"\ndata\n") + len(b"\ndata\n")]
+
+
+def data_of(tree):
+    return tree[len(header_of(tree)):]
+
+
+octree_case("octree_valid_bt", SMALL_BT, None)
+octree_case("octree_valid_ot", SMALL_OT, None, file="tree.ot")
+octree_case("octree_empty_file", b"", "is empty (0 bytes)")
+octree_case("octree_wrong_magic", SMALL_BT.replace(b"binary file", b"binry file", 1),
+            "not an OctoMap octree: expected the first line")
+octree_case("octree_text", b"P5\n4 3\n255\n" + bytes(12), "not an OctoMap octree")
+octree_case("octree_ot_named_bt", SMALL_OT, "it is the other kind; rename it to .ot")
+octree_case("octree_bt_named_ot", SMALL_BT, "it is the other kind; rename it to .bt",
+            file="tree.ot")
+octree_case("octree_colour_type", SMALL_OT.replace(b"id OcTree", b"id ColorOcTree", 1),
+            "of type 'ColorOcTree'; expected 'OcTree'", file="tree.ot")
+octree_case("octree_stamped_type", SMALL_BT.replace(b"id OcTree", b"id OcTreeStamped", 1),
+            "of type 'OcTreeStamped'; expected 'OcTree'")
+octree_case("octree_ot_without_id", SMALL_OT.replace(b"id OcTree\n", b"", 1),
+            "the header has no 'id'", file="tree.ot")
+octree_case("octree_absurd_size", SMALL_BT.replace(b"size 71", b"size 999999999999999999", 1),
+            "the header says 999999999999999999 nodes, the data holds 71")
+octree_case("octree_size_overflow", SMALL_BT.replace(b"size 71", b"size 99999999999999999999", 1),
+            "header line 5: expected 'size <node count>'")
+octree_case("octree_negative_size", SMALL_BT.replace(b"size 71", b"size -71", 1),
+            "header line 5: expected 'size <node count>'")
+octree_case("octree_size_too_small", SMALL_OT.replace(b"size 71", b"size 70", 1),
+            "the header says 70 nodes, the data holds 71", file="tree.ot")
+octree_case("octree_negative_resolution",
+            SMALL_BT.replace(b"res 0.10000000000000001", b"res -0.1", 1),
+            "header line 6: expected 'res <resolution in metres, > 0>'")
+octree_case("octree_nan_resolution", SMALL_OT.replace(b"res 0.1", b"res nan", 1),
+            "expected 'res <resolution in metres, > 0>'", file="tree.ot")
+octree_case("octree_inf_resolution", SMALL_BT.replace(b"res 0.10000000000000001", b"res inf", 1),
+            "expected 'res <resolution in metres, > 0>'")
+octree_case("octree_zero_resolution", SMALL_BT.replace(b"res 0.10000000000000001", b"res 0", 1),
+            "expected 'res <resolution in metres, > 0>'")
+octree_case("octree_unknown_key",
+            SMALL_BT.replace(b"res 0.10000000000000001", b"resolution 0.1", 1),
+            "unexpected 'resolution' (expected id, size, res or data)")
+octree_case("octree_data_before_res", SMALL_BT.replace(b"res 0.10000000000000001\n", b"", 1),
+            "'data' before 'size' and 'res'")
+octree_case("octree_no_data_line", header_of(SMALL_BT)[:-len(b"data\n")],
+            "the header ends without a 'data' line")
+octree_case("octree_header_only", header_of(SMALL_BT),
+            "it ends inside node 1 (0 data bytes)")
+octree_case("octree_data_line_at_end", header_of(SMALL_OT)[:-1],
+            "it ends inside node 1 (0 data bytes)", file="tree.ot")
+# OctoMap's own empty tree (writeBinaryConst of a new OcTree): size 0, no data.
+octree_case("octree_empty_tree", header_of(SMALL_BT).replace(b"size 71", b"size 0", 1),
+            "the octree is empty (size 0): nothing to merge")
+octree_case("octree_truncated_bt", header_of(SMALL_BT) + data_of(SMALL_BT)[:40],
+            "the octree data is truncated or corrupt: it ends inside node")
+octree_case("octree_truncated_ot", header_of(SMALL_OT) + data_of(SMALL_OT)[:200],
+            "the octree data is truncated or corrupt: it ends inside node", file="tree.ot")
+octree_case("octree_garbage_after_header", header_of(SMALL_BT) + b"this is not octree data\n",
+            "the octree data is truncated or corrupt")
+octree_case("octree_trailing_bytes", SMALL_BT + b"\n\n",
+            "2 bytes follow the end of the tree")
+# 17 nested inner nodes (11 for child 0): one level deeper than an OcTree holds.
+octree_case("octree_too_deep", header_of(SMALL_BT).replace(b"size 71", b"size 17", 1) +
+            b"\x03\x00" * 17, "a node at depth 16 has children (an OcTree is 16 levels deep)")
+octree_case("octree_inner_without_children", header_of(SMALL_BT).replace(b"size 71", b"size 2", 1)
+            + b"\x03\x00\x00\x00", "an inner node at depth 1 has no children")
+octree_case("octree_nan_log_odds",
+            header_of(SMALL_OT) + struct.pack("<f", float("nan")) + data_of(SMALL_OT)[4:],
+            "node 1 has a log-odds that is not a finite number", file="tree.ot")
+
+
 def main():
     for entry in os.listdir(HERE):
         if os.path.isdir(os.path.join(HERE, entry)):
