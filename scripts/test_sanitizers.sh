@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # CI stage: the whole test suite built with AddressSanitizer + UndefinedBehaviorSanitizer (clang,
 # -O1, no benchmarks; scripts/sanitize_build.sh) in build-fuzz/. Every test runs; the heavy
-# accuracy tests run a reduced
-# number of trials (FLEETMERGE_TEST_SCALE). Any sanitizer report fails its test (no recovery).
+# accuracy tests run a reduced number of trials (FLEETMERGE_TEST_SCALE). Any sanitizer report
+# fails its test (no recovery).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
