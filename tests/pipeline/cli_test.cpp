@@ -6,15 +6,14 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "tests/support/fleetmerge_cli.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {
 namespace {
 
-testing::CommandResult Fleetmerge(const std::string& args) {
-  return testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " " + args);
-}
+using testing::Fleetmerge;
 
 class CliTest : public ::testing::Test {
  protected:

@@ -13,6 +13,7 @@
 
 #include "pipeline/cut_fleet_case.hpp"
 #include "pipeline/synthetic_office.hpp"
+#include "tests/support/fleetmerge_cli.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/shared_data.hpp"
 
@@ -23,9 +24,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using testing::ShellQuote;
 
-testing::CommandResult Fleetmerge(const std::string& args) {
-  return testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " " + args);
-}
+using testing::Fleetmerge;
 
 // The Intel lab cut into 4 robots and merged, through the CLI, then evaluated three ways (one
 // test, so that the case is cut and merged once).

@@ -22,6 +22,7 @@
 
 #include "core/pose2.hpp"
 #include "io/map_io.hpp"
+#include "tests/support/fleetmerge_cli.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/shared_data.hpp"
 
@@ -35,9 +36,7 @@ using testing::ShellQuote;
 constexpr double kTranslationTolerance_m = 0.05;
 constexpr double kYawTolerance_rad = 0.25 * M_PI / 180.0;
 
-testing::CommandResult Fleetmerge(const std::string& args) {
-  return testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " " + args);
-}
+using testing::Fleetmerge;
 
 std::string ReadFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

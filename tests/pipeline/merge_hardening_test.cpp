@@ -11,6 +11,7 @@
 #include <string>
 
 #include "io/map_io.hpp"
+#include "tests/support/fleetmerge_cli.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/shared_data.hpp"
 
@@ -21,9 +22,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 using testing::ShellQuote;
 
-testing::CommandResult Fleetmerge(const std::string& args) {
-  return testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " " + args);
-}
+using testing::Fleetmerge;
 
 std::string ReadFile(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "tests/support/fleetmerge_cli.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/shared_data.hpp"
 
@@ -18,9 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::ShellQuote;
 
-testing::CommandResult Fleetmerge(const std::string& args) {
-  return testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " " + args);
-}
+using testing::Fleetmerge;
 
 std::map<std::string, int> ComponentOfEachMap(const fs::path& report_json) {
   std::ifstream in(report_json);
