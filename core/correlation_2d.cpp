@@ -5,39 +5,61 @@
 namespace fleetmerge {
 
 FixedImageCorrelator::FixedImageCorrelator(const cv::Mat1f& a, cv::Size max_b_size)
-    : a_size_(a.size()), max_b_size_(max_b_size) {
+    : FixedImageCorrelator(std::vector<cv::Mat1f>{a}, max_b_size) {}
+
+FixedImageCorrelator::FixedImageCorrelator(const std::vector<cv::Mat1f>& a_layers,
+                                           cv::Size max_b_size)
+    : max_b_size_(max_b_size) {
+  if (a_layers.empty()) throw Error("FixedImageCorrelator: no fixed image");
+  a_size_ = a_layers.front().size();
   // Padding to at least A + B - 1 in each axis turns the FFT's circular correlation into the
   // linear one; getOptimalDFTSize picks a size with small prime factors for speed.
-  dft_size_ = cv::Size(cv::getOptimalDFTSize(a.cols + max_b_size.width - 1),
-                       cv::getOptimalDFTSize(a.rows + max_b_size.height - 1));
-  cv::Mat1f padded = cv::Mat1f::zeros(dft_size_);
-  a.copyTo(padded(cv::Rect(0, 0, a.cols, a.rows)));
-  cv::dft(padded, a_spectrum_, 0, a.rows);
+  dft_size_ = cv::Size(cv::getOptimalDFTSize(a_size_.width + max_b_size.width - 1),
+                       cv::getOptimalDFTSize(a_size_.height + max_b_size.height - 1));
+  for (const cv::Mat1f& a : a_layers) {
+    if (a.size() != a_size_) throw Error("FixedImageCorrelator: fixed layers differ in size");
+    cv::Mat1f padded = cv::Mat1f::zeros(dft_size_);
+    a.copyTo(padded(cv::Rect(0, 0, a.cols, a.rows)));
+    a_spectra_.emplace_back();
+    cv::dft(padded, a_spectra_.back(), 0, a.rows);
+  }
 }
 
-cv::Mat1f FixedImageCorrelator::Correlate(const cv::Mat1f& b) const {
-  if (b.cols > max_b_size_.width || b.rows > max_b_size_.height) {
+cv::Mat1f FixedImageCorrelator::Correlate(const cv::Mat1f& b) const { return CorrelateSum({b}); }
+
+cv::Mat1f FixedImageCorrelator::CorrelateSum(const std::vector<cv::Mat1f>& b_layers) const {
+  if (b_layers.size() != a_spectra_.size()) {
+    throw Error("FixedImageCorrelator: one image B is needed per fixed layer");
+  }
+  const cv::Size b_size = b_layers.front().size();
+  if (b_size.width > max_b_size_.width || b_size.height > max_b_size_.height) {
     throw Error("FixedImageCorrelator: image B is larger than the size fixed at construction");
   }
-  cv::Mat1f padded = cv::Mat1f::zeros(dft_size_);
-  b.copyTo(padded(cv::Rect(0, 0, b.cols, b.rows)));
-  cv::Mat b_spectrum, product;
-  cv::dft(padded, b_spectrum, 0, b.rows);
-  // conj(B) in the product: correlation rather than convolution.
-  cv::mulSpectrums(a_spectrum_, b_spectrum, product, 0, /*conjB=*/true);
+  cv::Mat sum;
+  for (std::size_t k = 0; k < b_layers.size(); ++k) {
+    const cv::Mat1f& b = b_layers[k];
+    if (b.size() != b_size) throw Error("FixedImageCorrelator: B layers differ in size");
+    cv::Mat1f padded = cv::Mat1f::zeros(dft_size_);
+    b.copyTo(padded(cv::Rect(0, 0, b.cols, b.rows)));
+    cv::Mat b_spectrum, product;
+    cv::dft(padded, b_spectrum, 0, b.rows);
+    // conj(B) in the product: correlation rather than convolution.
+    cv::mulSpectrums(a_spectra_[k], b_spectrum, product, 0, /*conjB=*/true);
+    sum = sum.empty() ? product : sum + product;
+  }
   cv::Mat1f circular;
-  cv::idft(product, circular, cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+  cv::idft(sum, circular, cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
 
   // Circular index s holds the shift s (s >= 0) or s - N (negative shifts wrap to the end).
-  const int out_cols = a_size_.width + b.cols - 1;
-  const int out_rows = a_size_.height + b.rows - 1;
+  const int out_cols = a_size_.width + b_size.width - 1;
+  const int out_rows = a_size_.height + b_size.height - 1;
   cv::Mat1f out(out_rows, out_cols);
   for (int r = 0; r < out_rows; ++r) {
-    const int dy = r - (b.rows - 1);
+    const int dy = r - (b_size.height - 1);
     const float* src = circular.ptr<float>((dy + dft_size_.height) % dft_size_.height);
     float* dst = out.ptr<float>(r);
     for (int c = 0; c < out_cols; ++c) {
-      const int dx = c - (b.cols - 1);
+      const int dx = c - (b_size.width - 1);
       dst[c] = src[(dx + dft_size_.width) % dft_size_.width];
     }
   }

@@ -7,24 +7,36 @@
 #pragma once
 
 #include <opencv2/core.hpp>
+#include <vector>
 
 namespace fleetmerge {
 
 // Correlates many images B (one per rotation hypothesis) with one fixed image A: A's spectrum is
 // computed once, at a padded size that fits any B up to max_b_size without wrap-around.
+//
+// It may also hold several fixed layers A_1..A_k of one size, correlated with as many layers
+// B_1..B_k: the sum R_1 + ... + R_k costs one inverse transform (the sum is taken in the
+// frequency domain), which is how a score mixing several cell classes stays cheap.
 class FixedImageCorrelator {
  public:
   FixedImageCorrelator(const cv::Mat1f& a, cv::Size max_b_size);
+  // Throws if `a_layers` is empty or its images differ in size.
+  FixedImageCorrelator(const std::vector<cv::Mat1f>& a_layers, cv::Size max_b_size);
 
   // R as an image of (A.rows + B.rows - 1) x (A.cols + B.cols - 1): element (row, col) holds
-  // R(dx = col - (B.cols - 1), dy = row - (B.rows - 1)). Throws if B exceeds max_b_size.
+  // R(dx = col - (B.cols - 1), dy = row - (B.rows - 1)). Throws if B exceeds max_b_size or the
+  // correlator holds more than one layer.
   cv::Mat1f Correlate(const cv::Mat1f& b) const;
+
+  // R(A_1, B_1) + ... + R(A_k, B_k), laid out as Correlate's. Throws unless there is one B per
+  // fixed layer, all of one size within max_b_size.
+  cv::Mat1f CorrelateSum(const std::vector<cv::Mat1f>& b_layers) const;
 
  private:
   cv::Size a_size_;
   cv::Size max_b_size_;
   cv::Size dft_size_;
-  cv::Mat a_spectrum_;
+  std::vector<cv::Mat> a_spectra_;
 };
 
 // The direct O(N^2 M^2) sum, for tests and tiny images.

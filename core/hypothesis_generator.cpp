@@ -75,11 +75,16 @@ std::vector<CellHypothesis> GenerateHypotheses(const OccupancyGrid& a, const Occ
                                                DominantDirection(hs_a), options.translation);
   }
 
+  // The correlation search also needs where b is open (core/translation_search.hpp).
+  const std::vector<Eigen::Vector2f> b_free_points =
+      correlation ? CellCenters(b, CellState::kFree) : std::vector<Eigen::Vector2f>{};
   const RowSpans b_spans = KnownRowSpans(b);
   std::vector<CellHypothesis> candidates;
   for (const double yaw : RotationCandidates(hs_a, hs_b, options.rotation_peaks)) {
     const auto b_rotated = RotatePoints(b_spectra_points, yaw);
-    const auto translations = correlation ? correlation->Find(b_rotated) : spectra->Find(b_rotated);
+    const auto translations = correlation
+                                  ? correlation->Find(b_rotated, RotatePoints(b_free_points, yaw))
+                                  : spectra->Find(b_rotated);
     for (const auto& t : translations) {
       const Pose2 T_ga_gb(t.t_cells, yaw);
       // Ranking pass on every other row and column: 4x cheaper, same order in practice (the

@@ -10,12 +10,16 @@
 namespace fleetmerge {
 
 std::vector<Eigen::Vector2f> OccupiedCellCenters(const OccupancyGrid& grid) {
+  return CellCenters(grid, CellState::kOccupied);
+}
+
+std::vector<Eigen::Vector2f> CellCenters(const OccupancyGrid& grid, CellState state) {
   std::vector<Eigen::Vector2f> points;
-  const auto occupied = static_cast<std::uint8_t>(CellState::kOccupied);
+  const auto wanted = static_cast<std::uint8_t>(state);
   for (int j = 0; j < grid.height(); ++j) {
     const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
     for (int i = 0; i < grid.width(); ++i) {
-      if (row[i] == occupied) points.emplace_back(i + 0.5f, j + 0.5f);
+      if (row[i] == wanted) points.emplace_back(i + 0.5f, j + 0.5f);
     }
   }
   return points;

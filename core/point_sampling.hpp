@@ -25,6 +25,8 @@ struct SamplingOptions {
 // Centres of the occupied cells in the grid frame, in CELL units (cell (i, j) -> (i+.5, j+.5)),
 // row by row from the bottom.
 std::vector<Eigen::Vector2f> OccupiedCellCenters(const OccupancyGrid& grid);
+// The same for the cells in `state`.
+std::vector<Eigen::Vector2f> CellCenters(const OccupancyGrid& grid, CellState state);
 
 // The subset of `points` chosen by `options` (order preserved). Throws fleetmerge::Error for a
 // fraction outside (0, 1] or a step < 1.

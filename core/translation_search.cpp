@@ -13,22 +13,41 @@ int PoolingFor(const OccupancyGrid& a, double b_extent_cells, int coarse_max_sid
   return std::max(1, static_cast<int>(std::ceil(side / std::max(coarse_max_side, 8))));
 }
 
-// Score image of a on the coarse grid: blurred walls minus a penalty on pure free space.
-cv::Mat1f CoarseScoreImage(const OccupancyGrid& a, int pooling, double free_penalty) {
+// A map on the coarse grid: pixels holding a wall cell, and open space: pixels whose known cells
+// are all free and that do not touch a wall pixel (so a wall off by a pixel, from pooling or a
+// rotation error of a fraction of a degree, is not penalised).
+struct CoarseLayers {
+  cv::Mat1f walls;
+  cv::Mat1f open;
+};
+
+CoarseLayers OpenSpaceAround(cv::Mat1f walls, cv::Mat1f free) {
+  cv::Mat1f near_walls;
+  cv::dilate(walls, near_walls, cv::Mat());
+  free.setTo(0.f, near_walls > 0.f);
+  return {walls, free};
+}
+
+CoarseLayers CoarseGridLayers(const OccupancyGrid& a, int pooling) {
   const int w = (a.width() + pooling - 1) / pooling, h = (a.height() + pooling - 1) / pooling;
-  cv::Mat1f occupied = cv::Mat1f::zeros(h, w), free = cv::Mat1f::zeros(h, w);
+  cv::Mat1f walls = cv::Mat1f::zeros(h, w), free = cv::Mat1f::zeros(h, w);
   for (int j = 0; j < a.height(); ++j) {
     const std::uint8_t* row = a.cells().ptr<std::uint8_t>(j);
     for (int i = 0; i < a.width(); ++i) {
-      if (row[i] == std::uint8_t(CellState::kOccupied)) occupied(j / pooling, i / pooling) = 1.f;
+      if (row[i] == std::uint8_t(CellState::kOccupied)) walls(j / pooling, i / pooling) = 1.f;
       if (row[i] == std::uint8_t(CellState::kFree)) free(j / pooling, i / pooling) = 1.f;
     }
   }
-  cv::Mat1f score;
+  return OpenSpaceAround(walls, free);
+}
+
+// The fixed layers of a: the score of a pixel for a wall of b, and a's walls.
+std::vector<cv::Mat1f> FixedLayers(const OccupancyGrid& a, int pooling, double free_penalty) {
+  const CoarseLayers layers = CoarseGridLayers(a, pooling);
+  cv::Mat1f wall_score;
   // The blur widens the peak so a rotation off by a fraction of a degree still correlates.
-  cv::GaussianBlur(occupied, score, cv::Size(5, 5), 1.0);
-  free.setTo(0.f, occupied > 0.f);
-  return score - free_penalty * free;
+  cv::GaussianBlur(layers.walls, wall_score, cv::Size(5, 5), 1.0);
+  return {wall_score - free_penalty * layers.open, layers.walls};
 }
 
 // Local maxima of a 2-D surface (5x5 neighbourhood), largest first, with sub-pixel parabolas.
@@ -68,25 +87,35 @@ CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, double b_
       pooling_(PoolingFor(a, b_extent_cells, options.coarse_max_side)),
       max_b_size_(static_cast<int>(std::ceil(b_extent_cells / pooling_)) + 2,
                   static_cast<int>(std::ceil(b_extent_cells / pooling_)) + 2),
-      correlator_(CoarseScoreImage(a, pooling_, options.free_penalty), max_b_size_) {}
+      correlator_(FixedLayers(a, pooling_, options.free_penalty), max_b_size_) {}
 
 std::vector<TranslationCandidate> CorrelationTranslation::Find(
-    const std::vector<Eigen::Vector2f>& b_rotated) const {
-  if (b_rotated.empty()) return {};
-  Eigen::Vector2f q_min = b_rotated.front(), q_max = b_rotated.front();
-  for (const auto& q : b_rotated) {
-    q_min = q_min.cwiseMin(q);
-    q_max = q_max.cwiseMax(q);
+    const std::vector<Eigen::Vector2f>& b_occupied,
+    const std::vector<Eigen::Vector2f>& b_free) const {
+  if (b_occupied.empty()) return {};
+  Eigen::Vector2f q_min = b_occupied.front(), q_max = b_occupied.front();
+  for (const auto* points : {&b_occupied, &b_free}) {
+    for (const auto& q : *points) {
+      q_min = q_min.cwiseMin(q);
+      q_max = q_max.cwiseMax(q);
+    }
   }
   const int w = std::min(max_b_size_.width, int((q_max.x() - q_min.x()) / pooling_) + 1);
   const int h = std::min(max_b_size_.height, int((q_max.y() - q_min.y()) / pooling_) + 1);
-  cv::Mat1f b_image = cv::Mat1f::zeros(h, w);
-  for (const auto& q : b_rotated) {
-    const int u = std::min(w - 1, int((q.x() - q_min.x()) / pooling_));
-    const int v = std::min(h - 1, int((q.y() - q_min.y()) / pooling_));
-    b_image(v, u) = 1.f;
-  }
-  const cv::Mat1f surface = correlator_.Correlate(b_image);
+  const auto rasterize = [&](const std::vector<Eigen::Vector2f>& points) {
+    cv::Mat1f image = cv::Mat1f::zeros(h, w);
+    for (const auto& q : points) {
+      const int u = std::min(w - 1, int((q.x() - q_min.x()) / pooling_));
+      const int v = std::min(h - 1, int((q.y() - q_min.y()) / pooling_));
+      image(v, u) = 1.f;
+    }
+    return image;
+  };
+  const cv::Mat1f b_walls = rasterize(b_occupied);
+  const CoarseLayers b_layers = OpenSpaceAround(b_walls, rasterize(b_free));
+  // b's walls against a's score layer, minus a's walls on b's open space.
+  const cv::Mat1f surface = correlator_.CorrelateSum(
+      {b_layers.walls, static_cast<cv::Mat1f>(-options_.free_penalty * b_layers.open)});
   // b pixel u covers q - q_min in [p u, p u + p); shifted by d it meets a pixel u + d, which
   // covers a cells [p (u + d), ...): so q + t lies in a with t = p d - q_min.
   std::vector<TranslationCandidate> out = SurfacePeaks(surface, options_.candidates);

@@ -26,7 +26,7 @@ double WallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2
       on_wall += near_wall(ja, ia) != 0;
     }
   }
-  return on_known == 0 ? 0.0 : double(on_wall) / double(on_known);
+  return on_known < kMinWallsJudged ? 0.0 : double(on_wall) / double(on_known);
 }
 
 double SymmetricWallAgreement(const OccupancyGrid& a, const OccupancyGrid& b,

@@ -12,8 +12,13 @@
 
 namespace fleetmerge {
 
-// T_ga_gb in cell units (as CountAgreement). Returns 0 when no wall of b lands on a's known
-// cells.
+// Fewer walls of b on a's known cells than this cannot judge a pose: a sliver of overlap
+// holding one or two wall cells would score 1.0 (seen on simulated fleets once the translation
+// search found such slivers, with omega 1.0 too).
+constexpr long kMinWallsJudged = 30;
+
+// T_ga_gb in cell units (as CountAgreement). Returns 0 when fewer than kMinWallsJudged walls of b
+// land on a's known cells.
 double WallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb);
 
 // min(WallAgreement(a, b, T), WallAgreement(b, a, T^-1)): both maps' walls must agree.

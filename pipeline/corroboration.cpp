@@ -1,5 +1,6 @@
 #include "pipeline/corroboration.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/acceptance_index.hpp"
@@ -26,12 +27,12 @@ bool SomeHypothesisAgrees(const PairOutcome& pair, int n, const Pose2& T_n_m,
 
 }  // namespace
 
-std::vector<Corroboration> CorroborateMaps(const std::vector<OccupancyGrid>& maps,
-                                           const std::vector<PairOutcome>& pairs,
-                                           const FleetGraph& graph, std::int64_t min_overlap_cells,
-                                           double min_wall_agreement,
-                                           const PoseGraphOptions& options) {
-  std::vector<Corroboration> verdicts(maps.size());
+std::vector<PairVerdict> JudgeSolvedPairs(const std::vector<OccupancyGrid>& maps,
+                                          const std::vector<PairOutcome>& pairs,
+                                          const FleetGraph& graph, std::int64_t min_overlap_cells,
+                                          double min_wall_agreement,
+                                          const PoseGraphOptions& options) {
+  std::vector<PairVerdict> verdicts;
   for (const PairOutcome& pair : pairs) {
     const int a = pair.a, b = pair.b;
     if (graph.component_of[a] != graph.component_of[b]) continue;
@@ -42,24 +43,95 @@ std::vector<Corroboration> CorroborateMaps(const std::vector<OccupancyGrid>& map
     if (4 * (overlap.agree + overlap.disagree) < min_overlap_cells) continue;
     // A pair search can miss a true pose where the maps share little; the walls at the solved
     // pose then still agree.
-    const bool agrees = SomeHypothesisAgrees(pair, a, T_a_b, options) ||
-                        SymmetricWallAgreement(maps[a], maps[b], T_ga_gb) >= min_wall_agreement;
-    for (const int m : {a, b}) (agrees ? verdicts[m].supporters : verdicts[m].conflicts)++;
+    const double walls = SymmetricWallAgreement(maps[a], maps[b], T_ga_gb);
+    const bool agrees =
+        SomeHypothesisAgrees(pair, a, T_a_b, options) || walls >= min_wall_agreement;
+    verdicts.push_back({a, b, agrees, walls});
   }
   return verdicts;
 }
 
-int LeastCorroboratedMap(const std::vector<Corroboration>& verdicts) {
-  int worst = -1;
-  for (int m = 0; m < static_cast<int>(verdicts.size()); ++m) {
-    const Corroboration& v = verdicts[m];
-    if (v.conflicts <= v.supporters) continue;
-    if (worst < 0 ||
-        v.conflicts - v.supporters > verdicts[worst].conflicts - verdicts[worst].supporters) {
-      worst = m;
+std::vector<Corroboration> CorroborateMaps(const std::vector<PairVerdict>& verdicts,
+                                           int map_count) {
+  std::vector<Corroboration> per_map(map_count);
+  for (const PairVerdict& v : verdicts) {
+    for (const int m : {v.a, v.b}) (v.agrees ? per_map[m].supporters : per_map[m].conflicts)++;
+  }
+  return per_map;
+}
+
+namespace {
+
+// The verdicts across the split of `members` into those with side[m] and the others; the side
+// with fewer maps is named (on a tie, the one without members[0]).
+ComponentSplit CrossVerdicts(const std::vector<PairVerdict>& inside,
+                             const std::vector<int>& members, const std::vector<bool>& side,
+                             int side_size) {
+  ComponentSplit split;
+  for (const PairVerdict& v : inside) {
+    if (side[v.a] == side[v.b]) continue;
+    (v.agrees ? split.supporters : split.conflicts)++;
+    if (v.agrees) split.supporter_walls += v.wall_agreement;
+  }
+  const bool named = 2 * side_size <= static_cast<int>(members.size());
+  for (const int m : members) {
+    if (side[m] == named) split.detached.push_back(m);
+  }
+  return split;
+}
+
+bool Better(const ComponentSplit& candidate, const std::optional<ComponentSplit>& best) {
+  const int margin = candidate.conflicts - candidate.supporters;
+  if (margin <= 0) return false;
+  if (!best) return true;
+  const int best_margin = best->conflicts - best->supporters;
+  if (margin != best_margin) return margin > best_margin;
+  if (candidate.supporter_walls != best->supporter_walls) {
+    return candidate.supporter_walls < best->supporter_walls;
+  }
+  return candidate.detached.size() < best->detached.size();
+}
+
+}  // namespace
+
+std::optional<ComponentSplit> MostContradictedSplit(const std::vector<PairVerdict>& verdicts,
+                                                    const std::vector<int>& component_of,
+                                                    int max_exhaustive_maps) {
+  const int map_count = static_cast<int>(component_of.size());
+  std::optional<ComponentSplit> best;
+  for (int c = 0; c < map_count; ++c) {
+    std::vector<int> members;
+    for (int m = 0; m < map_count; ++m) {
+      if (component_of[m] == c) members.push_back(m);
+    }
+    std::vector<PairVerdict> inside;
+    for (const PairVerdict& v : verdicts) {
+      if (component_of[v.a] == c) inside.push_back(v);
+    }
+    const int n = static_cast<int>(members.size());
+    if (n < 2 || inside.empty()) continue;
+    std::vector<bool> side(map_count, false);
+    if (n <= max_exhaustive_maps) {
+      // members[0] stays off the mask: each split is visited once (2^(n-1) - 1 of them).
+      for (std::uint32_t mask = 1; mask < (1u << (n - 1)); ++mask) {
+        int side_size = 0;
+        for (int k = 1; k < n; ++k) {
+          side[members[k]] = (mask >> (k - 1)) & 1u;
+          side_size += side[members[k]];
+        }
+        const ComponentSplit split = CrossVerdicts(inside, members, side, side_size);
+        if (Better(split, best)) best = split;
+      }
+    } else {
+      for (const int m : members) {
+        std::fill(side.begin(), side.end(), false);
+        side[m] = true;
+        const ComponentSplit split = CrossVerdicts(inside, members, side, 1);
+        if (Better(split, best)) best = split;
+      }
     }
   }
-  return worst;
+  return best;
 }
 
 }  // namespace fleetmerge

@@ -9,10 +9,12 @@
 // that overlap it by at least min_overlap_cells under the solved poses, the supporters (some
 // hypothesis of the pair (n, m) within the edge tolerances of the solved relative pose, or the
 // two maps' walls agree there: a pair search can miss a true pose where two maps share little)
-// and the conflicts (neither).
+// and the conflicts (neither). A map, or a group of maps, that the cross pairs contradict more
+// than they support is split off (MostContradictedSplit).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/occupancy_grid.hpp"
@@ -22,21 +24,49 @@
 
 namespace fleetmerge {
 
+// One pair of maps of one component that overlap by at least min_overlap_cells under the solved
+// poses: whether it supports them (agrees) or conflicts.
+struct PairVerdict {
+  int a = 0, b = 0;  // map indices
+  bool agrees = false;
+  double wall_agreement = 0.0;  // at the solved poses (core/wall_agreement.hpp)
+};
+
+std::vector<PairVerdict> JudgeSolvedPairs(const std::vector<OccupancyGrid>& maps,
+                                          const std::vector<PairOutcome>& pairs,
+                                          const FleetGraph& graph, std::int64_t min_overlap_cells,
+                                          double min_wall_agreement,
+                                          const PoseGraphOptions& options);
+
 struct Corroboration {
   int supporters = 0;
   int conflicts = 0;
 };
 
-// Per map. `maps` share one resolution; `pairs` as from ComputeAllPairs; a map alone in its
-// component gets {0, 0}.
-std::vector<Corroboration> CorroborateMaps(const std::vector<OccupancyGrid>& maps,
-                                           const std::vector<PairOutcome>& pairs,
-                                           const FleetGraph& graph, std::int64_t min_overlap_cells,
-                                           double min_wall_agreement,
-                                           const PoseGraphOptions& options);
+// Per map: the verdicts of the pairs it is part of (a map alone in its component gets {0, 0}).
+std::vector<Corroboration> CorroborateMaps(const std::vector<PairVerdict>& verdicts, int map_count);
 
-// The map with the largest majority of conflicts over supporters, or -1 if no map has more
-// conflicts than supporters (a tie keeps the map: a pair search can miss a true pose).
-int LeastCorroboratedMap(const std::vector<Corroboration>& verdicts);
+// A split of one component in two: the maps of the smaller side, and the verdicts of the pairs
+// across it.
+struct ComponentSplit {
+  std::vector<int> detached;
+  int conflicts = 0;
+  int supporters = 0;
+  double supporter_walls = 0.0;  // sum of the cross supporters' wall agreement
+};
+
+// The split of a component whose cross pairs conflict most (conflicts - supporters > 0; a tie
+// between the two counts keeps the component whole: a pair search can miss a true pose), or
+// none. A wrong edge can join a single map (a robot of another building) or a whole group of maps
+// that agree among themselves (two robots of the other building that see the same place give two
+// consistent wrong edges, no cycle contradicts them); either way the maps on the two sides that
+// overlap under the solved poses contradict each other, and cutting between them resolves it.
+// Components of up to max_exhaustive_maps maps try every split; larger ones, every single map.
+// Among equal margins the split whose cross supporters have the weaker walls wins (of two groups
+// joined wrongly, the true pairs inside each agree better than the chance ones between them),
+// then the one detaching fewer maps.
+std::optional<ComponentSplit> MostContradictedSplit(const std::vector<PairVerdict>& verdicts,
+                                                    const std::vector<int>& component_of,
+                                                    int max_exhaustive_maps = 16);
 
 }  // namespace fleetmerge

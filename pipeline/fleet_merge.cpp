@@ -56,16 +56,21 @@ void AcceptByThreshold(std::vector<PairOutcome>& pairs, const FleetOptions& opti
   }
 }
 
-// Rejects every accepted edge of map m: its placement is contradicted by the other maps that see
-// the same place (pipeline/corroboration.hpp).
-void DetachMap(int m, const Corroboration& verdict, std::vector<PairOutcome>& pairs) {
+// Rejects every accepted edge across `split`: the maps on its two sides that overlap under the
+// solved poses contradict each other (pipeline/corroboration.hpp).
+void CutSplit(const ComponentSplit& split, std::vector<PairOutcome>& pairs) {
+  std::string names;
+  for (const int m : split.detached) names += (names.empty() ? "" : ", ") + std::to_string(m + 1);
+  const auto detached = [&](int m) {
+    return std::find(split.detached.begin(), split.detached.end(), m) != split.detached.end();
+  };
   for (PairOutcome& p : pairs) {
-    if (!p.accepted || (p.a != m && p.b != m)) continue;
+    if (!p.accepted || detached(p.a) == detached(p.b)) continue;
     p.accepted = false;
     p.edge_hypothesis = -1;
-    p.note = "rejected: map " + std::to_string(m + 1) + "'s placement is contradicted by " +
-             std::to_string(verdict.conflicts) + " of the maps it overlaps, supported by " +
-             std::to_string(verdict.supporters);
+    p.note = "rejected: the placement of map(s) " + names + " is contradicted by " +
+             std::to_string(split.conflicts) + " of the pairs that then overlap, supported by " +
+             std::to_string(split.supporters);
   }
 }
 
@@ -98,14 +103,14 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   AcceptByThreshold(result.pairs, options);
   FleetGraph graph =
       SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph);
-  // Each round detaches one map, so this ends.
+  // Each round splits a component, so this ends.
   for (std::size_t round = 0; round < maps.size(); ++round) {
     const auto verdicts =
-        CorroborateMaps(result.maps, result.pairs, graph, options.min_overlap_cells,
-                        options.min_wall_agreement, options.pose_graph);
-    const int m = LeastCorroboratedMap(verdicts);
-    if (m < 0) break;
-    DetachMap(m, verdicts[m], result.pairs);
+        JudgeSolvedPairs(result.maps, result.pairs, graph, options.min_overlap_cells,
+                         options.min_wall_agreement, options.pose_graph);
+    const auto split = MostContradictedSplit(verdicts, graph.component_of);
+    if (!split) break;
+    CutSplit(*split, result.pairs);
     graph =
         SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph);
   }

@@ -19,7 +19,7 @@ struct FleetOptions {
   // least min_overlap_cells cells known in both maps, and a symmetric wall agreement
   // (core/wall_agreement.hpp) >= min_wall_agreement. Defaults from the measurements in README.
   double omega_threshold = 0.9;
-  int min_overlap_cells = 2000;
+  int min_overlap_cells = 5000;
   double min_wall_agreement = 0.8;
   PoseGraphOptions pose_graph;
   FusionMode fusion = FusionMode::kLogOdds;

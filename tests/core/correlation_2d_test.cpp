@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <vector>
+
+#include "core/error.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -25,6 +28,19 @@ TEST(FixedImageCorrelator, MatchesDirectSumsOnRandomImages) {
     ASSERT_EQ(fft.size(), direct.size());
     EXPECT_LT(cv::norm(fft, direct, cv::NORM_INF), 1e-3) << b_size;
   }
+}
+
+TEST(FixedImageCorrelator, LayerSumMatchesSumOfDirectCorrelations) {
+  const std::vector<cv::Mat1f> a = {RandomImage(13, 17, 4), RandomImage(13, 17, 5)};
+  const std::vector<cv::Mat1f> b = {RandomImage(6, 8, 6), RandomImage(6, 8, 7)};
+  const FixedImageCorrelator correlator(a, cv::Size(9, 11));
+  const cv::Mat1f direct = CrossCorrelateDirect(a[0], b[0]) + CrossCorrelateDirect(a[1], b[1]);
+  EXPECT_LT(cv::norm(correlator.CorrelateSum(b), direct, cv::NORM_INF), 1e-3);
+  EXPECT_THROW(correlator.CorrelateSum({b[0]}), Error);  // one B per fixed layer
+  EXPECT_THROW(correlator.Correlate(b[0]), Error);
+  EXPECT_THROW(
+      FixedImageCorrelator(std::vector<cv::Mat1f>{a[0], RandomImage(3, 3, 8)}, cv::Size(2, 2)),
+      Error);
 }
 
 TEST(FixedImageCorrelator, PeakIsAtTheTrueShift) {

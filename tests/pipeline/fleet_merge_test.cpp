@@ -109,6 +109,7 @@ TEST(FleetMerge, ForeignMapStaysUnmergedAndTwoBuildingsGiveTwoComponents) {
 
   maps.insert(maps.end(), csail.maps.begin() + 1, csail.maps.end());
   const FleetResult two = MergeFleet(Pointers(maps), 0, FleetOptions{});
+  PrintPairs("intel+csail", intel, two);
   EXPECT_EQ(two.components.size(), 2u);
   for (int m = 0; m < 8; ++m) EXPECT_EQ(two.component_of[m], m < 4 ? 0 : 1) << m;
 }
