@@ -17,6 +17,7 @@ namespace fleetmerge {
 // It may also hold several fixed layers A_1..A_k of one size, correlated with as many layers
 // B_1..B_k: the sum R_1 + ... + R_k costs one inverse transform (the sum is taken in the
 // frequency domain), which is how a score mixing several cell classes stays cheap.
+// Not thread-safe: each thread needs its own correlator (it keeps work buffers).
 class FixedImageCorrelator {
  public:
   FixedImageCorrelator(const cv::Mat1f& a, cv::Size max_b_size);
@@ -26,17 +27,20 @@ class FixedImageCorrelator {
   // R as an image of (A.rows + B.rows - 1) x (A.cols + B.cols - 1): element (row, col) holds
   // R(dx = col - (B.cols - 1), dy = row - (B.rows - 1)). Throws if B exceeds max_b_size or the
   // correlator holds more than one layer.
-  cv::Mat1f Correlate(const cv::Mat1f& b) const;
+  cv::Mat1f Correlate(const cv::Mat1f& b);
 
   // R(A_1, B_1) + ... + R(A_k, B_k), laid out as Correlate's. Throws unless there is one B per
   // fixed layer, all of one size within max_b_size.
-  cv::Mat1f CorrelateSum(const std::vector<cv::Mat1f>& b_layers) const;
+  cv::Mat1f CorrelateSum(const std::vector<cv::Mat1f>& b_layers);
 
  private:
   cv::Size a_size_;
   cv::Size max_b_size_;
   cv::Size dft_size_;
   std::vector<cv::Mat> a_spectra_;
+  // Work buffers of CorrelateSum (so one correlator serves one thread).
+  cv::Mat1f padded_, circular_;
+  cv::Mat b_spectrum_, product_, sum_;
 };
 
 // The direct O(N^2 M^2) sum, for tests and tiny images.

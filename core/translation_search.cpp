@@ -90,8 +90,7 @@ CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, double b_
       correlator_(FixedLayers(a, pooling_, options.free_penalty), max_b_size_) {}
 
 std::vector<TranslationCandidate> CorrelationTranslation::Find(
-    const std::vector<Eigen::Vector2f>& b_occupied,
-    const std::vector<Eigen::Vector2f>& b_free) const {
+    const std::vector<Eigen::Vector2f>& b_occupied, const std::vector<Eigen::Vector2f>& b_free) {
   if (b_occupied.empty()) return {};
   Eigen::Vector2f q_min = b_occupied.front(), q_max = b_occupied.front();
   for (const auto* points : {&b_occupied, &b_free}) {

@@ -47,7 +47,7 @@ class CorrelationTranslation {
                          const TranslationOptions& options);
   // b_occupied, b_free: centres of b's occupied and free cells, rotated by the hypothesis.
   std::vector<TranslationCandidate> Find(const std::vector<Eigen::Vector2f>& b_occupied,
-                                         const std::vector<Eigen::Vector2f>& b_free) const;
+                                         const std::vector<Eigen::Vector2f>& b_free);
   int pooling() const { return pooling_; }
 
  private:

@@ -20,7 +20,7 @@ cv::Mat1f RandomImage(int rows, int cols, std::uint32_t seed) {
 
 TEST(FixedImageCorrelator, MatchesDirectSumsOnRandomImages) {
   const cv::Mat1f a = RandomImage(13, 17, 1);
-  const FixedImageCorrelator correlator(a, cv::Size(9, 11));
+  FixedImageCorrelator correlator(a, cv::Size(9, 11));
   for (const cv::Size b_size : {cv::Size(9, 11), cv::Size(4, 3), cv::Size(1, 1)}) {
     const cv::Mat1f b = RandomImage(b_size.height, b_size.width, 2);
     const cv::Mat1f fft = correlator.Correlate(b);
@@ -33,7 +33,7 @@ TEST(FixedImageCorrelator, MatchesDirectSumsOnRandomImages) {
 TEST(FixedImageCorrelator, LayerSumMatchesSumOfDirectCorrelations) {
   const std::vector<cv::Mat1f> a = {RandomImage(13, 17, 4), RandomImage(13, 17, 5)};
   const std::vector<cv::Mat1f> b = {RandomImage(6, 8, 6), RandomImage(6, 8, 7)};
-  const FixedImageCorrelator correlator(a, cv::Size(9, 11));
+  FixedImageCorrelator correlator(a, cv::Size(9, 11));
   const cv::Mat1f direct = CrossCorrelateDirect(a[0], b[0]) + CrossCorrelateDirect(a[1], b[1]);
   EXPECT_LT(cv::norm(correlator.CorrelateSum(b), direct, cv::NORM_INF), 1e-3);
   EXPECT_THROW(correlator.CorrelateSum({b[0]}), Error);  // one B per fixed layer
