@@ -80,11 +80,17 @@ std::vector<CellHypothesis> GenerateHypotheses(const OccupancyGrid& a, const Occ
       correlation ? CellCenters(b, CellState::kFree) : std::vector<Eigen::Vector2f>{};
   const RowSpans b_spans = KnownRowSpans(b);
   std::vector<CellHypothesis> candidates;
+  const bool sampled = b_spectra_points.size() != b_points.size();
   for (const double yaw : RotationCandidates(hs_a, hs_b, options.rotation_peaks)) {
     const auto b_rotated = RotatePoints(b_spectra_points, yaw);
-    const auto translations = correlation
-                                  ? correlation->Find(b_rotated, RotatePoints(b_free_points, yaw))
-                                  : spectra->Find(b_rotated);
+    std::vector<TranslationCandidate> translations;
+    if (correlation) {
+      const auto b_walls = sampled ? RotatePoints(b_points, yaw) : std::vector<Eigen::Vector2f>{};
+      translations = correlation->Find(b_rotated, sampled ? b_walls : b_rotated,
+                                       RotatePoints(b_free_points, yaw));
+    } else {
+      translations = spectra->Find(b_rotated);
+    }
     for (const auto& t : translations) {
       const Pose2 T_ga_gb(t.t_cells, yaw);
       // Ranking pass on every other row and column: 4x cheaper, same order in practice (the

@@ -90,10 +90,11 @@ CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, double b_
       correlator_(FixedLayers(a, pooling_, options.free_penalty), max_b_size_) {}
 
 std::vector<TranslationCandidate> CorrelationTranslation::Find(
-    const std::vector<Eigen::Vector2f>& b_occupied, const std::vector<Eigen::Vector2f>& b_free) {
-  if (b_occupied.empty()) return {};
-  Eigen::Vector2f q_min = b_occupied.front(), q_max = b_occupied.front();
-  for (const auto* points : {&b_occupied, &b_free}) {
+    const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
+    const std::vector<Eigen::Vector2f>& free) {
+  if (scored_walls.empty() || walls.empty()) return {};
+  Eigen::Vector2f q_min = walls.front(), q_max = walls.front();
+  for (const auto* points : {&scored_walls, &walls, &free}) {
     for (const auto& q : *points) {
       q_min = q_min.cwiseMin(q);
       q_max = q_max.cwiseMax(q);
@@ -110,11 +111,10 @@ std::vector<TranslationCandidate> CorrelationTranslation::Find(
     }
     return image;
   };
-  const cv::Mat1f b_walls = rasterize(b_occupied);
-  const CoarseLayers b_layers = OpenSpaceAround(b_walls, rasterize(b_free));
-  // b's walls against a's score layer, minus a's walls on b's open space.
+  const CoarseLayers b_layers = OpenSpaceAround(rasterize(walls), rasterize(free));
+  // b's scored walls against a's score layer, minus a's walls on b's open space.
   const cv::Mat1f surface = correlator_.CorrelateSum(
-      {b_layers.walls, static_cast<cv::Mat1f>(-options_.free_penalty * b_layers.open)});
+      {rasterize(scored_walls), static_cast<cv::Mat1f>(-options_.free_penalty * b_layers.open)});
   // b pixel u covers q - q_min in [p u, p u + p); shifted by d it meets a pixel u + d, which
   // covers a cells [p (u + d), ...): so q + t lies in a with t = p d - q_min.
   std::vector<TranslationCandidate> out = SurfacePeaks(surface, options_.candidates);
