@@ -1,9 +1,9 @@
 // The corroboration step (pipeline/corroboration.hpp) on the cases that motivated it: four
 // simulated robots in a synthetic office and a fifth robot that explored another synthetic
-// office. The foreign map matches one robot's map by chance (gcc build: omega >= 0.95, wall
-// agreement 0.81 and 0.84, above min_wall_agreement), an edge no cycle can check; the other
-// robots that see the same place contradict it, so it is detached. Without the step that edge
-// would merge it.
+// office. The foreign map can match one robot's map by chance above the per-pair thresholds, an
+// edge no cycle can check; the other robots that see the same place contradict it, so it is split
+// off. The split itself is also checked on hand-made verdicts: a lone map, a group of maps joined
+// by consistent wrong edges, and ties.
 #include "pipeline/corroboration.hpp"
 
 #include <gtest/gtest.h>

@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# Accuracy on simulated fleets that the ctest suite does not use (other seeds, harder options):
+# the held-out check behind the README's "Accuracy suite" numbers. Needs a build
+# (scripts/build.sh) and ../shared/data/maps. Usage: scripts/heldout_accuracy.sh [OUT_DIR]
+# Prints one line per case (pairs, coarse, fine, false merges) and the totals.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+fleetmerge=./build/pipeline/fleetmerge
+maps=../shared/data/maps
+out=${1:-out/heldout}
+if [ ! -d "$maps" ]; then
+  echo "heldout_accuracy: $maps is missing (the real building maps)" >&2
+  exit 1
+fi
+mkdir -p "$out"
+
+run_case() {  # name, then `fleetmerge simulate` options
+  local name=$1 dir=$out/$1
+  shift
+  rm -rf "$dir"
+  "$fleetmerge" simulate "$dir" --path-length 100 "$@" >/dev/null
+  "$fleetmerge" merge "$dir/job.yaml" --quiet >/dev/null
+  "$fleetmerge" eval "$dir/merged/report.json" "$dir/truth.yaml" --json >"$dir/eval.json"
+  python3 - "$name" "$dir/eval.json" <<'EOF'
+import json, sys
+s = json.load(open(sys.argv[2]))["summary"]
+print(sys.argv[1], s["scored_pairs"], s["coarse_pairs"], s["fine_pairs"], s["false_merges"])
+EOF
+}
+
+{
+  for seed in 11 12; do
+    run_case "gdc_$seed" --building "$maps/gdc_floor1_full.yaml" --robots 5 --seed $seed
+    run_case "csail_$seed" --building "$maps/mit_csail.yaml" --robots 5 --seed $seed
+    run_case "stata_$seed" --building "$maps/stata_basement.yaml" --robots 5 --seed $seed
+    run_case "aces_$seed" --building "$maps/aces3_austin.yaml" --robots 5 --seed $seed
+    run_case "intel_$seed" --building "$maps/intel_lab.yaml" --robots 5 --seed $seed
+    run_case "office_little_$seed" --robots 5 --seed $seed --little-overlap
+  done
+  for seed in 21 22 23 24; do
+    run_case "gdc_$seed" --building "$maps/gdc_floor1_full.yaml" --robots 5 --seed $seed
+    run_case "csail_$seed" --building "$maps/mit_csail.yaml" --robots 5 --seed $seed
+    run_case "stata_foreign_$seed" --building "$maps/stata_basement.yaml" --robots 4 \
+      --seed $seed --foreign "$maps/intel_lab.yaml"
+    run_case "office_little_foreign_$seed" --robots 4 --seed $seed --little-overlap \
+      --foreign-office-seed $((seed + 1000))
+    run_case "b31_$seed" --building "$maps/mit_building_31.yaml" --robots 6 --seed $seed
+  done
+} | tee "$out/summary.txt"
+awk '{p += $2; c += $3; f += $4; m += $5}
+     END {printf "held-out: %d truly overlapping pairs; coarse %d (%.1f %%), fine %d (%.1f %%); false merges %d\n",
+          p, c, 100 * c / p, f, 100 * f / p, m}' "$out/summary.txt"
