@@ -1,7 +1,7 @@
 // End to end fleet merging of 8 maps of about 600 x 600 cells: load (PGM + YAML), all 28 pairs,
 // pose graph, compositing and writing, on all cores. Run:
-//   ./build/tests/benchmarks/fleet_benchmark --benchmark_repetitions=5 \
-//       --benchmark_report_aggregates_only=true
+//   ./build/tests/benchmarks/fleet_benchmark --benchmark_repetitions=5
+//       --benchmark_report_aggregates_only=true   (one command line)
 // The maps are cut from willow-full-0.05 (1165 x 945 cells) in ../shared as 8 robots (4 x 2 tiles
 // grown by 30 %, each re-framed at random), or from a synthetic office without it; they are
 // written once to a temporary folder so that loading is timed too.

@@ -1,7 +1,7 @@
 // Speed of one pair of 530 x 530 cell maps (the paper's size, Section IV-B) with all points and
 // with 5 / 20 / 50 % random sampling of the Hough transform and the translation points. Run:
-//   ./build/tests/benchmarks/pair_benchmark --benchmark_repetitions=7 \
-//       --benchmark_report_aggregates_only=true
+//   ./build/tests/benchmarks/pair_benchmark --benchmark_repetitions=7
+//       --benchmark_report_aggregates_only=true   (one command line)
 // The maps are cut from the Intel lab map in ../shared (or a synthetic office without it); b is
 // rotated by 37 degrees and shifted by (10, 7.5) m.
 #include <benchmark/benchmark.h>
