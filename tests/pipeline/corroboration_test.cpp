@@ -46,7 +46,9 @@ TEST_P(ForeignOffice, ChanceEdgeIsDetachedAndTheBuildingStaysWhole) {
     const bool passed = p.best_omega() >= defaults.omega_threshold &&
                         p.wall_agreement >= defaults.min_wall_agreement &&
                         p.overlap_cells >= defaults.min_overlap_cells;
-    if (passed) EXPECT_NE(p.note.find("is contradicted by"), std::string::npos) << p.note;
+    if (passed) {
+      EXPECT_NE(p.note.find("is contradicted by"), std::string::npos) << p.note;
+    }
   }
 
   // Placed by any hypothesis of its pairs with the building's robots (chance matches), the
