@@ -111,7 +111,8 @@ std::optional<ComponentSplit> MostContradictedSplit(const std::vector<PairVerdic
     const int n = static_cast<int>(members.size());
     if (n < 2 || inside.empty()) continue;
     std::vector<bool> side(map_count, false);
-    if (n <= max_exhaustive_maps) {
+    // 2^(n-1) splits: capped so that the mask fits and the count stays small.
+    if (n <= std::min(max_exhaustive_maps, 20)) {
       // members[0] stays off the mask: each split is visited once (2^(n-1) - 1 of them).
       for (std::uint32_t mask = 1; mask < (1u << (n - 1)); ++mask) {
         int side_size = 0;

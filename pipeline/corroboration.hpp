@@ -61,7 +61,8 @@ struct ComponentSplit {
 // that agree among themselves (two robots of the other building that see the same place give two
 // consistent wrong edges, no cycle contradicts them); either way the maps on the two sides that
 // overlap under the solved poses contradict each other, and cutting between them resolves it.
-// Components of up to max_exhaustive_maps maps try every split; larger ones, every single map.
+// Components of up to max_exhaustive_maps (at most 20) maps try every split; larger ones, every
+// single map.
 // Among equal margins the split whose cross supporters have the weaker walls wins (of two groups
 // joined wrongly, the true pairs inside each agree better than the chance ones between them),
 // then the one detaching fewer maps.
