@@ -1,32 +1,22 @@
-// Helpers shared by the io/ tests: writing small files, rendering grids as text.
+// Helpers shared by the io/ tests: fixtures, rendering grids as text (file reads and writes:
+// tests/support/files.hpp).
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <vector>
 
 #include "core/occupancy_grid.hpp"
+#include "tests/support/files.hpp"
 
 namespace fleetmerge::testing {
 
 // The checked-in fixtures (tests/data/maps), fixed at configure time.
 inline std::filesystem::path FixtureDir() {
   return std::filesystem::path(FLEETMERGE_TEST_DATA_DIR) / "maps";
-}
-
-inline void WriteFile(const std::filesystem::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary);
-  out << bytes;
-}
-
-inline std::string ReadFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 // A map YAML naming `image` with the given extra lines (e.g. "negate: 1\n").

@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -22,6 +21,7 @@
 
 #include "core/pose2.hpp"
 #include "io/map_io.hpp"
+#include "tests/support/files.hpp"
 #include "tests/support/fleetmerge_cli.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/shared_data.hpp"
@@ -37,17 +37,8 @@ constexpr double kTranslationTolerance_m = 0.05;
 constexpr double kYawTolerance_rad = 0.25 * M_PI / 180.0;
 
 using testing::Fleetmerge;
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void WriteFile(const fs::path& path, const std::string& text) {
-  std::ofstream(path, std::ios::binary) << text;
-}
+using testing::ReadFile;
+using testing::WriteFile;
 
 json ReadJson(const fs::path& path) { return json::parse(ReadFile(path)); }
 

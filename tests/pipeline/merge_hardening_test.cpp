@@ -5,12 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <string>
 
 #include "io/map_io.hpp"
+#include "tests/support/files.hpp"
 #include "tests/support/fleetmerge_cli.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/shared_data.hpp"
@@ -23,17 +22,8 @@ using nlohmann::json;
 using testing::ShellQuote;
 
 using testing::Fleetmerge;
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-void WriteFile(const fs::path& path, const std::string& bytes) {
-  std::ofstream(path, std::ios::binary) << bytes;
-}
+using testing::ReadFile;
+using testing::WriteFile;
 
 // A map `name`.yaml/.pgm in `dir`: width x height pixels of one grey value.
 fs::path FlatMap(const fs::path& dir, const std::string& name, int width, int height,

@@ -10,17 +10,16 @@
 
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <set>
-#include <sstream>
 #include <string>
 #include <thread>
 
 #include "io/map_io.hpp"
 #include "io/result_folder.hpp"
+#include "tests/support/files.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {
@@ -28,13 +27,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-std::string ReadFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+using testing::ReadFile;
 
 // Starts `fleetmerge args...` with its output discarded; returns its pid.
 pid_t Start(const std::vector<std::string>& args) {
