@@ -51,15 +51,6 @@ std::vector<PairVerdict> JudgeSolvedPairs(const std::vector<OccupancyGrid>& maps
   return verdicts;
 }
 
-std::vector<Corroboration> CorroborateMaps(const std::vector<PairVerdict>& verdicts,
-                                           int map_count) {
-  std::vector<Corroboration> per_map(map_count);
-  for (const PairVerdict& v : verdicts) {
-    for (const int m : {v.a, v.b}) (v.agrees ? per_map[m].supporters : per_map[m].conflicts)++;
-  }
-  return per_map;
-}
-
 namespace {
 
 // The verdicts across the split of `members` into those with side[m] and the others; the side

@@ -5,12 +5,12 @@
 // give omega >= 0.95 and wall agreement >= 0.8 for one pose) and hang on that single edge, where
 // no cycle can check it. But if it truly were there, every other map that sees the same place
 // would have found it there too: their pair searches, which recover true poses nearly always, put
-// a hypothesis at the implied pose. So each map m counts, over the other maps n of its component
-// that overlap it by at least min_overlap_cells under the solved poses, the supporters (some
-// hypothesis of the pair (n, m) within the edge tolerances of the solved relative pose, or the
-// two maps' walls agree there: a pair search can miss a true pose where two maps share little)
-// and the conflicts (neither). A map, or a group of maps, that the cross pairs contradict more
-// than they support is split off (MostContradictedSplit).
+// a hypothesis at the implied pose. So every pair (n, m) of a component that overlaps by at
+// least min_overlap_cells under the solved poses is judged: it supports them (some hypothesis of
+// the pair within the edge tolerances of the solved relative pose, or the two maps' walls agree
+// there: a pair search can miss a true pose where two maps share little) or conflicts (neither).
+// A map, or a group of maps, that the cross pairs contradict more than they support is split off
+// (MostContradictedSplit).
 #pragma once
 
 #include <cstdint>
@@ -37,14 +37,6 @@ std::vector<PairVerdict> JudgeSolvedPairs(const std::vector<OccupancyGrid>& maps
                                           const FleetGraph& graph, std::int64_t min_overlap_cells,
                                           double min_wall_agreement,
                                           const PoseGraphOptions& options);
-
-struct Corroboration {
-  int supporters = 0;
-  int conflicts = 0;
-};
-
-// Per map: the verdicts of the pairs it is part of (a map alone in its component gets {0, 0}).
-std::vector<Corroboration> CorroborateMaps(const std::vector<PairVerdict>& verdicts, int map_count);
 
 // A split of one component in two: the maps of the smaller side, and the verdicts of the pairs
 // across it.
