@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "pipeline/job.hpp"
+#include "job/job.hpp"
 
 namespace fleetmerge {
 

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "pipeline/simulation.hpp"
+#include "io/simulated_case.hpp"
 
 namespace fleetmerge {
 

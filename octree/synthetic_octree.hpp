@@ -1,5 +1,5 @@
 // Synthetic octrees of one storey for tests, benchmarks and examples: a 2-D floor plan (e.g.
-// pipeline/synthetic_office.hpp, or a part of it cut by pipeline/ground_truth_pair.hpp) extruded
+// sim/synthetic_office.hpp, or a part of it cut by sim/ground_truth_pair.hpp) extruded
 // into 3-D as a robot with a 3-D sensor would have mapped it. Occupied plan cells become walls
 // from the floor to the ceiling; free cells become a floor voxel (occupied), free voxels up to
 // the ceiling and, optionally, a ceiling voxel; unknown cells stay unobserved. Observed cells get

@@ -29,10 +29,9 @@
 #include "core/grid_geometry.hpp"
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
+#include "job/fusion_mode.hpp"
 
 namespace fleetmerge {
-
-enum class FusionMode { kLogOdds, kMax, kVote };
 
 // Log-odds evidence of one map's occupied / free cell in FusionMode::kLogOdds.
 inline constexpr double kLogOddsOccupied = 0.84729786038720367;  // log(0.7 / 0.3)

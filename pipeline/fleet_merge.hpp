@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "core/occupancy_grid.hpp"
+#include "job/fleet_options.hpp"
 #include "pipeline/all_pairs.hpp"
-#include "pipeline/fleet_options.hpp"
 
 namespace fleetmerge {
 

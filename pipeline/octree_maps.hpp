@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "io/map_io.hpp"
+#include "job/job.hpp"
 #include "octree/octree_options.hpp"
 #include "pipeline/fleet_merge.hpp"
-#include "pipeline/job.hpp"
 
 namespace octomap {
 class OcTree;

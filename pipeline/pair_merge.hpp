@@ -8,25 +8,9 @@
 #include "core/hypothesis_generator.hpp"
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
-#include "refine/local_alignment.hpp"
+#include "job/pair_options.hpp"
 
 namespace fleetmerge {
-
-struct PairOptions {
-  HypothesisOptions hypotheses;
-  bool refine = true;
-  double refine_truncation_cells = 6.0;  // basin of the local alignment, in its grid's cells
-  // The quick stage runs on grids coarse enough that its basin bridges the translation search's
-  // error: this many of that search's pooled pixels (CorrelationPooling).
-  double quick_basin_pixels = 1.5;
-  // Candidates refined per hypothesis returned: a near miss can rank below a wrong hypothesis
-  // before refinement and above all of them after.
-  int candidates_per_hypothesis = 2;
-  // Every candidate is refined cheaply (few wall points); the best few again with more.
-  LocalAlignmentOptions quick_refine{300, 15, 1.0};
-  LocalAlignmentOptions final_refine{1500, 25, 1.0};
-  int final_refine_count = 1;
-};
 
 struct PairHypothesis {
   Pose2 T_a_b;  // pose of b's map frame in a's map frame (metres, radians)

@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "job/job.hpp"
 #include "pipeline/fleet_merge.hpp"
-#include "pipeline/job.hpp"
 
 namespace fleetmerge {
 

@@ -5,7 +5,7 @@
 # Prints one line per case (pairs, coarse, fine, false merges) and the totals.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-fleetmerge=./build/pipeline/fleetmerge
+fleetmerge=./build/cli/fleetmerge
 maps=../shared/data/maps
 out=${1:-out/heldout}
 if [ ! -d "$maps" ]; then

@@ -6,6 +6,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 out=out/demo
-./build/pipeline/fleetmerge demo --out "$out"
+./build/cli/fleetmerge demo --out "$out"
 echo
 echo "open $out/case/merged/merged_0_preview.png to see the merged map (colours: the robots)"

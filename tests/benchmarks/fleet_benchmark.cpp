@@ -5,17 +5,17 @@
 // The maps are cut from willow-full-0.05 (1165 x 945 cells) in ../shared as 8 robots (4 x 2 tiles
 // grown by 30 %, each re-framed at random), or from a synthetic office without it; they are
 // written once to a temporary folder so that loading is timed too.
+#include <benchmark/benchmark.h>
+
 #include <cstdio>
 #include <random>
 #include <sstream>
 
-#include <benchmark/benchmark.h>
-
+#include "cli/merge_command.hpp"
 #include "io/map_io.hpp"
-#include "pipeline/ground_truth_pair.hpp"
-#include "pipeline/job.hpp"
-#include "pipeline/merge_command.hpp"
-#include "pipeline/synthetic_office.hpp"
+#include "job/job.hpp"
+#include "sim/ground_truth_pair.hpp"
+#include "sim/synthetic_office.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {

@@ -15,7 +15,7 @@
 #include "octree/octree_merge.hpp"
 #include "octree/octree_projection.hpp"
 #include "octree/synthetic_octree.hpp"
-#include "pipeline/synthetic_office.hpp"
+#include "sim/synthetic_office.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {

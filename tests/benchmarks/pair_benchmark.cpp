@@ -14,7 +14,7 @@
 #include "io/map_io.hpp"
 #include "pipeline/composite.hpp"
 #include "pipeline/pair_merge.hpp"
-#include "pipeline/synthetic_office.hpp"
+#include "sim/synthetic_office.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {

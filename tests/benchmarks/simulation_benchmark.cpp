@@ -6,7 +6,7 @@
 #include <benchmark/benchmark.h>
 
 #include "io/map_io.hpp"
-#include "pipeline/simulation.hpp"
+#include "sim/simulation.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {

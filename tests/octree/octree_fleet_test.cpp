@@ -19,16 +19,16 @@
 #include <random>
 #include <sstream>
 
+#include "cli/example_command.hpp"
+#include "cli/merge_command.hpp"
 #include "core/error.hpp"
 #include "io/job_file.hpp"
 #include "io/map_io.hpp"
 #include "io/octree_io.hpp"
 #include "octree/synthetic_octree.hpp"
-#include "pipeline/example_command.hpp"
 #include "pipeline/fleet_merge.hpp"
-#include "pipeline/ground_truth_pair.hpp"
-#include "pipeline/merge_command.hpp"
-#include "pipeline/synthetic_office.hpp"
+#include "sim/ground_truth_pair.hpp"
+#include "sim/synthetic_office.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {

@@ -10,7 +10,7 @@
 #include "core/error.hpp"
 #include "octree/floor_height.hpp"
 #include "octree/synthetic_octree.hpp"
-#include "pipeline/synthetic_office.hpp"
+#include "sim/synthetic_office.hpp"
 
 namespace fleetmerge {
 namespace {

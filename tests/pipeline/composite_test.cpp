@@ -11,7 +11,7 @@
 
 #include "core/error.hpp"
 #include "pipeline/preview.hpp"
-#include "pipeline/synthetic_office.hpp"
+#include "sim/synthetic_office.hpp"
 
 namespace fleetmerge {
 namespace {

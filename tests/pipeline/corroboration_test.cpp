@@ -9,7 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "pipeline/fleet_merge.hpp"
-#include "pipeline/simulation.hpp"
+#include "sim/simulation.hpp"
 
 namespace fleetmerge {
 namespace {

@@ -1,4 +1,4 @@
-// The accuracy suite of issue 4: seeded simulated fleets (pipeline/simulation.hpp) on six real
+// The accuracy suite of issue 4: seeded simulated fleets (sim/simulation.hpp) on six real
 // buildings and on synthetic offices, 3 to 8 robots each, one case with little overlap, one with
 // different resolutions and two with a robot from a foreign building, merged by MergeFleet and
 // scored by Evaluate against the simulator's ground truth. Asserted over all cases: no false
@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "io/map_io.hpp"
-#include "pipeline/evaluation.hpp"
 #include "pipeline/fleet_merge.hpp"
-#include "pipeline/simulation.hpp"
+#include "sim/evaluation.hpp"
+#include "sim/simulation.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {

@@ -1,5 +1,5 @@
 // Fleet merging on real maps cut into seeded robot maps with known frames
-// (pipeline/ground_truth_pair.hpp, CutFleet).
+// (sim/ground_truth_pair.hpp, CutFleet).
 #include "pipeline/fleet_merge.hpp"
 
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include "core/acceptance_index.hpp"
 #include "core/hypothesis_generator.hpp"
 #include "io/map_io.hpp"
-#include "pipeline/ground_truth_pair.hpp"
+#include "sim/ground_truth_pair.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {

@@ -7,8 +7,8 @@
 #include <random>
 
 #include "io/map_io.hpp"
-#include "pipeline/ground_truth_pair.hpp"
 #include "pipeline/pair_merge.hpp"
+#include "sim/ground_truth_pair.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {

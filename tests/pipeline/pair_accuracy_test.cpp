@@ -1,5 +1,5 @@
 // Ground truth on real maps: two overlapping parts cut from one map, the second re-framed by a
-// seeded random rigid motion and resampled (pipeline/ground_truth_pair.hpp). The best hypothesis
+// seeded random rigid motion and resampled (sim/ground_truth_pair.hpp). The best hypothesis
 // must be within 1 degree and 3 cells (mean displacement of b's walls) in >= 95 % of the trials
 // per map; the fine rate (0.25 degree, 1 cell) is asserted at >= 80 %. CI runs the first 30
 // trials of each map (its time budget); FLEETMERGE_FULL_ACCURACY=1 runs the 100 that the README
@@ -19,8 +19,8 @@
 
 #include "core/resample.hpp"
 #include "io/map_io.hpp"
-#include "pipeline/ground_truth_pair.hpp"
 #include "pipeline/pair_merge.hpp"
+#include "sim/ground_truth_pair.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {

@@ -1,0 +1,153 @@
+// The `fleetmerge` command line: subcommands over the pipeline library.
+#include <CLI/CLI.hpp>
+#include <iostream>
+#include <string>
+
+#include "cli/bench_command.hpp"
+#include "cli/cli_options.hpp"
+#include "cli/demo_command.hpp"
+#include "cli/eval_command.hpp"
+#include "cli/example_command.hpp"
+#include "cli/merge_command.hpp"
+#include "cli/pair_command.hpp"
+#include "cli/simulate_command.hpp"
+#include "core/error.hpp"
+
+int main(int argc, char** argv) {
+  using namespace fleetmerge;
+  CLI::App app{
+      "fleetmerge: merge the occupancy grid maps of a robot fleet (Carpin's Hough-spectrum "
+      "method)"};
+  app.require_subcommand(1);
+
+  PairCommand pair;
+  CLI::App* pair_app = app.add_subcommand(
+      "pair", "Rank the transformations that overlay map B on map A (pose of B's frame in A's)");
+  pair_app->add_option("a", pair.a_yaml, "map A (map_server YAML)")->required();
+  pair_app->add_option("b", pair.b_yaml, "map B (map_server YAML)")->required();
+  pair_app->add_option("-n", pair.hypotheses, "number of hypotheses")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  pair_app->add_flag("--json", pair.json, "print JSON instead of a table");
+  pair_app->add_option("--out", pair.out_dir,
+                       "also write the merged map of the best hypothesis into this folder");
+  AddMethodOptions(*pair_app, pair.options);
+
+  MergeCommand merge;
+  CLI::App* merge_app =
+      app.add_subcommand("merge", "Merge the maps of a fleet: job files, or maps with --out DIR");
+  merge_app->add_option("inputs", merge.inputs, "job files (YAML), or map YAMLs with --out")
+      ->required();
+  merge_app->add_option("--out", merge.out_dir, "treat the inputs as maps of one job, output here");
+  merge_app->add_option("--reference", merge.reference, "with --out: the reference map's name");
+  merge_app->add_option("--threads", merge.options.threads, "threads (0: all cores)")
+      ->check(CLI::NonNegativeNumber);
+  merge_app
+      ->add_option("--omega-threshold", merge.options.omega_threshold,
+                   "best omega a pair needs to become an edge")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  merge_app
+      ->add_option("--octree-band-min", merge.options.octree.band_min_m,
+                   "octrees: bottom of the floor plan's height band, metres above the floor")
+      ->check(CLI::Range(-10.0, 10.0))
+      ->capture_default_str();
+  merge_app
+      ->add_option("--octree-band-max", merge.options.octree.band_max_m,
+                   "octrees: top of the floor plan's height band, metres above the floor")
+      ->check(CLI::Range(-10.0, 10.0))
+      ->capture_default_str();
+  merge_app->add_flag("--quiet", merge.quiet, "no progress output");
+  merge_app->add_flag("--force", merge.force,
+                      "replace an output folder that holds the results of another job");
+  merge_app
+      ->add_option("--max-map-cells", merge.options.max_map_cells,
+                   "refuse map images with more cells (checked before decoding)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  AddMethodOptions(*merge_app, merge.options.pair);
+
+  ExampleCommand example;
+  CLI::App* example_app = app.add_subcommand(
+      "example", "Write two overlapping robot maps of a synthetic office with the true answer");
+  example_app->add_option("dir", example.out_dir, "output folder")->required();
+  example_app->add_option("--seed", example.seed, "random seed")->capture_default_str();
+  example_app->add_flag("--octree", example.octree,
+                        "two OctoMap octrees (.bt) of one storey, with truth.yaml and job.yaml");
+
+  DemoCommand demo;
+  CLI::App* demo_app = AddDemoCommand(app, demo);
+
+  SimulateCommand simulate;
+  CLI::App* simulate_app = AddSimulateCommand(app, simulate);
+
+  EvalCommand eval;
+  CLI::App* eval_app = app.add_subcommand(
+      "eval", "Score a merge's report.json against a case's truth.yaml (poses, false merges)");
+  eval_app->add_option("report", eval.report_json, "report.json written by `fleetmerge merge`")
+      ->required();
+  eval_app->add_option("truth", eval.truth_yaml, "truth.yaml of the case")->required();
+  eval_app->add_flag("--json", eval.json, "print JSON instead of a table");
+  eval_app
+      ->add_option("--min-overlap-cells", eval.options.min_overlap_cells,
+                   "pairs observing at least this many common cells truly overlap")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+
+  CLI::App* bench_app =
+      app.add_subcommand("bench", "Experiments on case folders with ground truth (truth.yaml)");
+  bench_app->require_subcommand(1);
+  CutFleetCommand cut;
+  CLI::App* cut_app = bench_app->add_subcommand(
+      "cut-fleet", "Cut a building map into K robot maps in random frames, with truth.yaml");
+  cut_app->add_option("map", cut.map_yaml, "the building's map (map_server YAML)")->required();
+  cut_app->add_option("dir", cut.out_dir, "output case folder")->required();
+  cut_app->add_option("--robots", cut.robots, "number of robot maps")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cut_app->add_option("--seed", cut.seed, "random seed")->capture_default_str();
+  SamplingBenchCommand sampling;
+  CLI::App* sampling_app = bench_app->add_subcommand(
+      "sampling", "The paper's sampling experiment (IV-B): random vs every k-th point");
+  sampling_app->add_option("case", sampling.case_dir, "case folder with truth.yaml")->required();
+  sampling_app->add_option("--trials", sampling.trials, "trials per setting")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  sampling_app->add_option("--seed", sampling.seed, "random seed")->capture_default_str();
+  sampling_app->add_option("--out", sampling.out_dir, "output folder (default CASE/sampling)");
+  sampling_app
+      ->add_option("--min-overlap-cells", sampling.min_overlap_cells,
+                   "pairs observing at least this many common cells truly overlap")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  sampling_app->add_flag("--quiet", sampling.quiet, "no progress output");
+  sampling_app->add_flag("--ours", sampling.ours,
+                         "our pipeline (2-D correlation + refinement) instead of the paper's "
+                         "(X/Y spectra, no refinement)");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const Error& e) {  // thrown by option callbacks (e.g. a bad sampling spec)
+    std::cerr << "fleetmerge: error: " << e.what() << "\n";
+    return 2;
+  }
+  try {
+    if (demo_app->parsed()) return RunDemoCommand(demo, std::cout, std::cerr);
+    if (merge_app->parsed()) return RunMergeCommand(merge, std::cout, std::cerr);
+    if (pair_app->parsed()) return RunPairCommand(pair, std::cout);
+    if (example_app->parsed()) return RunExampleCommand(example, std::cout);
+    if (simulate_app->parsed()) return RunSimulateCommand(simulate, std::cout);
+    if (eval_app->parsed()) return RunEvalCommand(eval, std::cout);
+    if (cut_app->parsed()) return RunCutFleetCommand(cut, std::cout);
+    if (sampling_app->parsed()) return RunSamplingBenchCommand(sampling, std::cout, std::cerr);
+  } catch (const Error& e) {
+    std::cerr << "fleetmerge: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "fleetmerge: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

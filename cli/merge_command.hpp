@@ -1,0 +1,37 @@
+// `fleetmerge merge`: runs fleet-merging jobs (pipeline/fleet_merge.hpp) from job files or from
+// a list of maps, writes each job's merged maps, previews and report.json atomically, and keeps
+// going when one job fails.
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "job/job.hpp"
+
+namespace fleetmerge {
+
+struct MergeCommand {
+  std::vector<std::filesystem::path> inputs;     // job files, or maps with --out
+  std::optional<std::filesystem::path> out_dir;  // set: `inputs` are maps forming one job
+  std::optional<std::string> reference;          // with --out: a map name
+  bool quiet = false;
+  bool force = false;    // replace an output folder holding another job's results
+  FleetOptions options;  // with --out
+};
+
+// The job described by `--out DIR a.yaml b.yaml ...`.
+Job JobFromMapList(const MergeCommand& command);
+
+// Runs the jobs in order; a failing job is reported on `err` and the others still run. Each
+// job's output folder is replaced as a whole, only by a complete new result set
+// (io/result_folder.hpp); `force` lets a job replace the results of another job.
+// Returns 0 when every job ran (whatever got merged), 1 otherwise.
+int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::ostream& err,
+            bool force = false);
+
+int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream& err);
+
+}  // namespace fleetmerge

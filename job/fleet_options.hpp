@@ -1,0 +1,32 @@
+// Every parameter of a fleet-merging job, with the defaults a user should not need to change.
+// Filled from a job YAML by io/job_file.hpp (validated there) or from the command line.
+#pragma once
+
+#include <cstdint>
+
+#include "core/occupancy_grid.hpp"
+#include "job/fusion_mode.hpp"
+#include "job/pair_options.hpp"
+#include "octree/octree_options.hpp"
+#include "refine/pose_graph.hpp"
+
+namespace fleetmerge {
+
+struct FleetOptions {
+  double resolution_m = 0.0;  // 0: the finest resolution among the job's maps
+  PairOptions pair;           // Hough, sampling, hypotheses per pair, translation, refinement
+  // A pair becomes a pose-graph edge when its best hypothesis has omega >= omega_threshold, at
+  // least min_overlap_cells cells known in both maps, and a symmetric wall agreement
+  // (core/wall_agreement.hpp) >= min_wall_agreement. Defaults from the measurements in README.
+  double omega_threshold = 0.9;
+  int min_overlap_cells = 5000;
+  double min_wall_agreement = 0.8;
+  PoseGraphOptions pose_graph;
+  FusionMode fusion = FusionMode::kLogOdds;
+  int threads = 0;       // 0: all cores
+  OctreeOptions octree;  // floor plans of the job's octrees (.bt, .ot maps)
+  // A map image announcing more cells is refused before decoding (see kDefaultMaxMapCells).
+  std::int64_t max_map_cells = kDefaultMaxMapCells;
+};
+
+}  // namespace fleetmerge

@@ -1,0 +1,28 @@
+// One fleet-merging job as described in a job file: which maps, where the output goes, the
+// reference map and the method's parameters.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "job/fleet_options.hpp"
+
+namespace fleetmerge {
+
+struct JobMap {
+  std::string name;              // given in the job, else the YAML's file name without extension
+  std::filesystem::path source;  // as written in the job file (reported in report.json)
+  std::filesystem::path path;    // resolved: relative paths are relative to the job file's folder
+};
+
+struct Job {
+  std::string name;  // the job's `name`, else "job <index>" (1-based)
+  std::filesystem::path job_file;
+  std::vector<JobMap> maps;
+  std::filesystem::path output_dir;  // resolved like map paths
+  std::string reference;             // a map name; default the first map
+  FleetOptions options;
+};
+
+}  // namespace fleetmerge
