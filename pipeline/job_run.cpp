@@ -1,0 +1,151 @@
+#include "pipeline/job_run.hpp"
+
+#include <chrono>
+#include <exception>
+#include <optional>
+#include <utility>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/octree_io.hpp"
+#include "io/result_folder.hpp"
+#include "pipeline/parallel.hpp"
+#include "pipeline/preview.hpp"
+#include "pipeline/report_json.hpp"
+
+namespace fleetmerge {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Writes the merged maps and previews into `dir` (the staging folder); returns each component's
+// merged map file name ("" for an unmerged one) and appends every file written to `written`.
+std::vector<std::string> WriteOutputs(const std::filesystem::path& dir, const FleetResult& result,
+                                      const std::vector<std::filesystem::path>& protect,
+                                      std::vector<std::string>& written) {
+  std::vector<std::string> files(result.components.size());
+  for (std::size_t c = 0; c < result.components.size(); ++c) {
+    const FleetComponent& component = result.components[c];
+    if (!component.merged) continue;
+    const std::string stem = "merged_" + std::to_string(c);
+    files[c] = stem + ".yaml";
+    SaveMap(*component.merged, dir / files[c], protect);
+    std::vector<CompositeInput> inputs;
+    for (int m : component.maps) inputs.push_back({&result.maps[m], result.T_component_map[m]});
+    SaveImage(ColourPreview(inputs, *component.merged), dir / (stem + "_preview.png"), protect);
+    written.insert(written.end(), {stem + ".yaml", stem + ".pgm", stem + "_preview.png"});
+  }
+  return files;
+}
+
+// The merged files' names when nothing is written: the names a written set would have.
+std::vector<std::string> MergedFileNames(const FleetResult& result) {
+  std::vector<std::string> files(result.components.size());
+  for (std::size_t c = 0; c < result.components.size(); ++c) {
+    if (result.components[c].merged) files[c] = "merged_" + std::to_string(c) + ".yaml";
+  }
+  return files;
+}
+
+}  // namespace
+
+std::vector<LoadedMap> LoadJobMaps(const Job& job, int threads, std::vector<JobOctree>& octrees) {
+  octrees.assign(job.maps.size(), {});
+  std::vector<std::optional<LoadedMap>> loaded(job.maps.size());
+  std::vector<std::exception_ptr> failures(job.maps.size());
+  ParallelFor(job.maps.size(), threads, [&](std::size_t m) {
+    try {
+      const auto& path = job.maps[m].path;
+      loaded[m] = IsOctreePath(path) ? LoadOctreeMap(path, job.options.octree, octrees[m])
+                                     : LoadMap(path, job.options.max_map_cells);
+    } catch (...) {  // kept per map so that the first in job order is the one reported
+      failures[m] = std::current_exception();
+    }
+  });
+  std::vector<LoadedMap> out;
+  for (std::size_t m = 0; m < job.maps.size(); ++m) {
+    if (failures[m]) std::rethrow_exception(failures[m]);
+    out.push_back(std::move(*loaded[m]));
+  }
+  return out;
+}
+
+std::string JobIdentity(const Job& job) {
+  const auto canonical = [](const std::filesystem::path& path) {
+    std::error_code ec;
+    const std::filesystem::path c = std::filesystem::weakly_canonical(path, ec);
+    return (ec ? path : c).string();
+  };
+  if (!job.job_file.empty()) return "job '" + job.name + "' of " + canonical(job.job_file);
+  std::string maps = "maps";
+  for (const JobMap& map : job.maps) maps += " " + canonical(map.path);
+  return maps;
+}
+
+JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
+                        const std::vector<JobOctree>& octrees, double load_ms,
+                        const JobRunOptions& options) {
+  const auto start = Clock::now();
+  if (loaded.size() != job.maps.size()) {
+    throw Error("internal: " + std::to_string(loaded.size()) + " maps loaded for a job of " +
+                std::to_string(job.maps.size()));
+  }
+  const std::vector<JobOctree> no_octrees(job.maps.size());
+  const std::vector<JobOctree>& job_octrees = octrees.empty() ? no_octrees : octrees;
+  JobTiming timing;
+  timing.load_ms = load_ms;
+  std::vector<std::filesystem::path> protect;
+  if (!job.job_file.empty()) protect.push_back(job.job_file);
+  int reference = 0;
+  for (std::size_t m = 0; m < job.maps.size(); ++m) {
+    for (const auto& p : {loaded[m].metadata.yaml_path, loaded[m].metadata.image_path}) {
+      if (!p.empty()) protect.push_back(p);
+    }
+    if (job.maps[m].name == job.reference) reference = static_cast<int>(m);
+  }
+  // Checked before the work (a folder that may not be replaced fails the job now); every file
+  // then goes to a staging folder, swapped in as a whole (io/result_folder.hpp).
+  std::optional<ResultFolder> folder;
+  if (options.write) folder.emplace(job.output_dir, JobIdentity(job), options.force, protect);
+  std::vector<const OccupancyGrid*> grids;
+  for (const auto& l : loaded) grids.push_back(&l.grid);
+  JobOutcome outcome;
+  outcome.result = MergeFleet(grids, reference, job.options, options.progress);
+  const FleetResult& result = outcome.result;
+
+  const auto write_start = Clock::now();
+  std::vector<std::string> written;
+  std::vector<std::string> files;
+  OctreeOutputs octree_outputs;
+  if (folder) {
+    files = WriteOutputs(folder->staging_dir(), result, protect, written);
+    octree_outputs = WriteMergedOctrees(result, job_octrees, folder->staging_dir(), protect);
+    for (const auto& f : octree_outputs.merged_files) {
+      if (!f.empty()) written.push_back(f);
+    }
+  } else {
+    files = MergedFileNames(result);
+    octree_outputs.z_m = VerticalOffsets(result, job_octrees);
+    octree_outputs.merged_files.assign(result.components.size(), "");
+  }
+  timing.write_ms = MillisecondsSince(write_start);
+  timing.total_ms = load_ms + MillisecondsSince(start);
+  outcome.report = MakeReport(job, result, files, timing);
+  AddOctreesToReport(outcome.report, job_octrees, octree_outputs);
+  if (folder) {
+    WriteFileAtomically(folder->staging_dir() / "report.json", outcome.report.dump(2) + "\n",
+                        protect);
+    written.push_back("report.json");
+    folder->Publish(written);
+  }
+  return outcome;
+}
+
+JobOutcome RunJob(const Job& job, const JobRunOptions& options) {
+  const auto start = Clock::now();
+  std::vector<JobOctree> octrees;
+  const std::vector<LoadedMap> loaded = LoadJobMaps(job, job.options.threads, octrees);
+  return RunLoadedJob(job, loaded, octrees, MillisecondsSince(start), options);
+}
+
+}  // namespace fleetmerge

@@ -1,0 +1,51 @@
+// One fleet-merging job end to end: its maps loaded (io/; octrees with their floor plans), merged
+// (pipeline/fleet_merge.hpp), and its result set written into its output folder: merged maps,
+// previews, merged octrees and report.json, swapped in as a whole (io/result_folder.hpp).
+// `fleetmerge merge` runs jobs from files; the library API runs jobs on maps already in memory.
+#pragma once
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "io/map_io.hpp"
+#include "job/job.hpp"
+#include "pipeline/fleet_merge.hpp"
+#include "pipeline/octree_maps.hpp"
+
+namespace fleetmerge {
+
+struct JobRunOptions {
+  bool write = true;   // false: compute only (nothing is written, output_dir is not touched)
+  bool force = false;  // replace an output folder holding another job's results
+  ProgressFn progress;
+};
+
+struct JobOutcome {
+  FleetResult result;
+  nlohmann::json report;  // report.json's contents (written or not)
+};
+
+// Loads the job's maps on `threads` threads (0: all cores); a failure is reported for the first
+// failing map in job order, as a sequential load would. Octrees (.bt, .ot) come with their floor
+// plans, and `octrees` gets one entry per map (empty for a 2-D map).
+std::vector<LoadedMap> LoadJobMaps(const Job& job, int threads, std::vector<JobOctree>& octrees);
+
+// Who wrote an output folder (its manifest, io/result_folder.hpp): the job file and job name,
+// or for a job without a file the set of maps. Rerunning the same job replaces its results;
+// another job needs `force`.
+std::string JobIdentity(const Job& job);
+
+// Runs `job` on its maps already loaded: loaded[m] (and octrees[m], empty for a 2-D map, or an
+// empty vector when the job has no octree) belongs to job.maps[m]. load_ms is reported as the
+// load time. Throws fleetmerge::Error (or a filesystem error) when the output folder may not be
+// replaced or a file cannot be written; the folder is then unchanged.
+JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
+                        const std::vector<JobOctree>& octrees, double load_ms,
+                        const JobRunOptions& options = {});
+
+// LoadJobMaps, then RunLoadedJob.
+JobOutcome RunJob(const Job& job, const JobRunOptions& options = {});
+
+}  // namespace fleetmerge
