@@ -48,30 +48,7 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, std::ostream& out, s
 }  // namespace
 
 Job JobFromMapList(const MergeCommand& command) {
-  Job job;
-  job.name = "merge";
-  job.output_dir = *command.out_dir;
-  job.options = command.options;
-  for (const auto& path : command.inputs) {
-    for (const JobMap& earlier : job.maps) {
-      std::error_code ec;
-      if (std::filesystem::equivalent(earlier.path, path, ec)) {
-        throw Error(path.string() + " is listed twice (the same file as " + earlier.path.string() +
-                    ")");
-      }
-      if (earlier.name == path.stem().string()) {
-        throw Error(path.string() + " and " + earlier.path.string() + " would both be named '" +
-                    earlier.name + "' (maps are named by file stem with --out; give them " +
-                    "distinct file names or use a job file with 'name' keys)");
-      }
-    }
-    job.maps.push_back({path.stem().string(), path, path});
-  }
-  job.reference = command.reference.value_or(job.maps.empty() ? "" : job.maps.front().name);
-  bool found = false;
-  for (const auto& m : job.maps) found = found || m.name == job.reference;
-  if (!found) throw Error("--reference '" + job.reference + "' is not one of the maps' names");
-  return job;
+  return MapListJob(command.inputs, *command.out_dir, command.reference, command.options);
 }
 
 int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::ostream& err,

@@ -70,6 +70,35 @@ std::vector<LoadedMap> LoadJobMaps(const Job& job, int threads, std::vector<JobO
   return out;
 }
 
+Job MapListJob(const std::vector<std::filesystem::path>& paths,
+               const std::filesystem::path& output_dir, const std::optional<std::string>& reference,
+               const FleetOptions& options) {
+  Job job;
+  job.name = "merge";
+  job.output_dir = output_dir;
+  job.options = options;
+  for (const auto& path : paths) {
+    for (const JobMap& earlier : job.maps) {
+      std::error_code ec;
+      if (std::filesystem::equivalent(earlier.path, path, ec)) {
+        throw Error(path.string() + " is listed twice (the same file as " + earlier.path.string() +
+                    ")");
+      }
+      if (earlier.name == path.stem().string()) {
+        throw Error(path.string() + " and " + earlier.path.string() + " would both be named '" +
+                    earlier.name + "' (maps are named by file stem with --out; give them " +
+                    "distinct file names or use a job file with 'name' keys)");
+      }
+    }
+    job.maps.push_back({path.stem().string(), path, path});
+  }
+  job.reference = reference.value_or(job.maps.empty() ? "" : job.maps.front().name);
+  bool found = false;
+  for (const auto& m : job.maps) found = found || m.name == job.reference;
+  if (!found) throw Error("--reference '" + job.reference + "' is not one of the maps' names");
+  return job;
+}
+
 std::string JobIdentity(const Job& job) {
   const auto canonical = [](const std::filesystem::path& path) {
     std::error_code ec;
@@ -78,7 +107,9 @@ std::string JobIdentity(const Job& job) {
   };
   if (!job.job_file.empty()) return "job '" + job.name + "' of " + canonical(job.job_file);
   std::string maps = "maps";
-  for (const JobMap& map : job.maps) maps += " " + canonical(map.path);
+  for (const JobMap& map : job.maps) {  // maps in memory (the library API) by name
+    maps += " " + (map.path.empty() ? "memory:" + map.name : canonical(map.path));
+  }
   return maps;
 }
 

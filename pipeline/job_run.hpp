@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,13 @@ struct JobOutcome {
 // failing map in job order, as a sequential load would. Octrees (.bt, .ot) come with their floor
 // plans, and `octrees` gets one entry per map (empty for a 2-D map).
 std::vector<LoadedMap> LoadJobMaps(const Job& job, int threads, std::vector<JobOctree>& octrees);
+
+// The job of `fleetmerge merge --out DIR a.yaml b.yaml ...`: named "merge", maps named after
+// their file stems, the reference (a map name) by default the first map. Throws fleetmerge::Error
+// for a file listed twice, two maps that would share a name, or an unknown reference.
+Job MapListJob(const std::vector<std::filesystem::path>& paths,
+               const std::filesystem::path& output_dir, const std::optional<std::string>& reference,
+               const FleetOptions& options);
 
 // Who wrote an output folder (its manifest, io/result_folder.hpp): the job file and job name,
 // or for a job without a file the set of maps. Rerunning the same job replaces its results;

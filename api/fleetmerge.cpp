@@ -1,0 +1,292 @@
+// The public API (api/include/fleetmerge/fleetmerge.hpp) on top of the merging job: conversions
+// between the public Map (nav_msgs/OccupancyGrid cells) and core's three-state OccupancyGrid, and
+// the same calls the `fleetmerge` command makes, so that results are the command's.
+#include "fleetmerge/fleetmerge.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "core/error.hpp"
+#include "io/map_io.hpp"
+#include "io/octree_io.hpp"
+#include "pipeline/job_run.hpp"
+#include "pipeline/octree_maps.hpp"
+#include "pipeline/pair_merge.hpp"
+#include "pipeline/parallel.hpp"
+
+#ifndef FLEETMERGE_VERSION
+#error "FLEETMERGE_VERSION must be defined by the build"
+#endif
+
+namespace fleetmerge {
+namespace {
+
+// map_server's default trinary thresholds (io/map_io.hpp), on OccupancyGrid's percentages.
+constexpr double kOccupiedThreshPercent = 65.0;
+constexpr double kFreeThreshPercent = 19.6;
+
+void Require(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("fleetmerge: " + what);
+}
+
+bool Finite(const Pose2D& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.yaw);
+}
+
+OccupancyGrid ToGrid(const Map& map) {
+  Require(map.width() > 0 && map.height() > 0,
+          "map '" + map.name() + "' is empty (build it with Map(data, width, height, ...))");
+  const GridGeometry geometry(map.resolution(), {map.width(), map.height()},
+                              Pose2(map.origin().x, map.origin().y, map.origin().yaw));
+  cv::Mat1b cells(map.height(), map.width());
+  const std::vector<std::int8_t>& data = map.data();
+  for (int j = 0; j < map.height(); ++j) {
+    std::uint8_t* row = cells.ptr<std::uint8_t>(j);  // row j from the bottom, as data's
+    for (int i = 0; i < map.width(); ++i) {
+      const int v = data[static_cast<std::size_t>(j) * map.width() + i];
+      CellState state = CellState::kUnknown;
+      if (v >= 0) {
+        if (v > kOccupiedThreshPercent)
+          state = CellState::kOccupied;
+        else if (v < kFreeThreshPercent)
+          state = CellState::kFree;
+      }
+      row[i] = static_cast<std::uint8_t>(state);
+    }
+  }
+  return OccupancyGrid(geometry, cells);
+}
+
+Map FromGrid(const OccupancyGrid& grid, std::string name) {
+  std::vector<std::int8_t> data(static_cast<std::size_t>(grid.width()) * grid.height());
+  for (int j = 0; j < grid.height(); ++j) {
+    const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
+    for (int i = 0; i < grid.width(); ++i) {
+      const auto state = static_cast<CellState>(row[i]);
+      data[static_cast<std::size_t>(j) * grid.width() + i] = state == CellState::kOccupied ? 100
+                                                             : state == CellState::kFree   ? 0
+                                                                                           : -1;
+    }
+  }
+  const Pose2& T = grid.geometry().T_map_grid();
+  return Map(std::move(data), grid.width(), grid.height(), grid.geometry().resolution_m(),
+             {T.x_m(), T.y_m(), T.yaw_rad()}, std::move(name));
+}
+
+Pose2D ToPublic(const Pose2& T) { return {T.x_m(), T.y_m(), T.yaw_rad()}; }
+
+// Options -> the command line's FleetOptions (cli/main.cpp, cli/cli_options.cpp).
+FleetOptions ToFleetOptions(const Options& o) {
+  Require(o.hypotheses >= 1 && o.hypotheses <= 100,
+          "hypotheses must be 1..100, got " + std::to_string(o.hypotheses));
+  Require(std::isfinite(o.resolution) && o.resolution >= 0.0,
+          "resolution must be a finite number >= 0 (0: the finest map's)");
+  Require(o.omega_threshold >= 0.0 && o.omega_threshold <= 1.0, "omega_threshold must be in 0..1");
+  Require(o.min_overlap_cells >= 0, "min_overlap_cells must be >= 0");
+  Require(o.min_wall_agreement >= 0.0 && o.min_wall_agreement <= 1.0,
+          "min_wall_agreement must be in 0..1");
+  Require(o.threads >= 0, "threads must be >= 0 (0: all cores)");
+  Require(o.max_map_cells > 0, "max_map_cells must be > 0");
+  Require(std::isfinite(o.octree_band_min) && std::isfinite(o.octree_band_max) &&
+              o.octree_band_min < o.octree_band_max,
+          "octree_band_min must be below octree_band_max");
+  FleetOptions f;
+  f.resolution_m = o.resolution;
+  f.omega_threshold = o.omega_threshold;
+  f.min_overlap_cells = o.min_overlap_cells;
+  f.min_wall_agreement = o.min_wall_agreement;
+  f.threads = o.threads;
+  f.max_map_cells = o.max_map_cells;
+  f.octree.band_min_m = o.octree_band_min;
+  f.octree.band_max_m = o.octree_band_max;
+  if (o.fusion == "log-odds") {
+    f.fusion = FusionMode::kLogOdds;
+  } else if (o.fusion == "max") {
+    f.fusion = FusionMode::kMax;
+  } else if (o.fusion == "vote") {
+    f.fusion = FusionMode::kVote;
+  } else {
+    Require(false, "fusion must be log-odds, max or vote, got '" + o.fusion + "'");
+  }
+  HypothesisOptions& h = f.pair.hypotheses;
+  if (o.translation == "correlation") {
+    h.translation.method = TranslationMethod::kCorrelation2D;
+  } else if (o.translation == "spectra") {
+    h.translation.method = TranslationMethod::kXySpectra;
+  } else {
+    Require(false, "translation must be correlation or spectra, got '" + o.translation + "'");
+  }
+  f.pair.refine = o.refine;
+  // As the command line seeds sampling (cli/cli_options.cpp, --seed 0).
+  h.hough_sampling.seed = 0;
+  h.spectra_sampling.seed = 1;
+  h.max_hypotheses = o.hypotheses;
+  return f;
+}
+
+// std::runtime_error with the command's message for everything fleetmerge itself throws.
+template <typename F>
+auto Translated(F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const Error& e) {
+    throw std::runtime_error(e.what());
+  } catch (const std::filesystem::filesystem_error& e) {
+    throw std::runtime_error(e.what());
+  }
+}
+
+MergeResult ToResult(const Job& job, const JobOutcome& outcome) {
+  const FleetResult& r = outcome.result;
+  MergeResult out;
+  for (std::size_t m = 0; m < job.maps.size(); ++m) {
+    out.maps.push_back({job.maps[m].name, r.component_of[m], ToPublic(r.T_component_map[m])});
+  }
+  for (std::size_t c = 0; c < r.components.size(); ++c) {
+    Component component;
+    component.id = static_cast<int>(c);
+    for (int m : r.components[c].maps) component.maps.push_back(job.maps[m].name);
+    component.reference = job.maps[r.components[c].reference].name;
+    if (r.components[c].merged) {
+      component.merged = FromGrid(*r.components[c].merged, "merged_" + std::to_string(c));
+    }
+    out.components.push_back(std::move(component));
+  }
+  for (const PairOutcome& p : r.pairs) {
+    PairDecision d;
+    d.a = job.maps[p.a].name;
+    d.b = job.maps[p.b].name;
+    d.omega = p.best_omega();
+    d.accepted = p.accepted;
+    d.overlap_cells = p.overlap_cells;
+    d.wall_agreement = p.wall_agreement;
+    d.note = p.note;
+    for (const PairHypothesis& h : p.hypotheses) {
+      d.hypotheses.push_back({h.T_a_b.x_m(), h.T_a_b.y_m(), h.T_a_b.yaw_rad(), h.omega});
+    }
+    out.pairs.push_back(std::move(d));
+  }
+  out.report_json = outcome.report.dump(2) + "\n";
+  return out;
+}
+
+std::optional<std::string> Reference(const Options& options) {
+  if (options.reference.empty()) return std::nullopt;
+  return options.reference;
+}
+
+}  // namespace
+
+std::string Version() { return FLEETMERGE_VERSION; }
+
+Map::Map(std::vector<std::int8_t> data, int width, int height, double resolution_m, Pose2D origin,
+         std::string name)
+    : data_(std::move(data)),
+      width_(width),
+      height_(height),
+      resolution_m_(resolution_m),
+      origin_(origin),
+      name_(std::move(name)) {
+  Require(width > 0 && height > 0, "map width and height must be > 0, got " +
+                                       std::to_string(width) + " x " + std::to_string(height));
+  Require(static_cast<std::int64_t>(width) * height <= kDefaultMaxMapCells,
+          "map of " + std::to_string(width) + " x " + std::to_string(height) +
+              " cells is larger than " + std::to_string(kDefaultMaxMapCells) + " cells");
+  Require(data_.size() == static_cast<std::size_t>(width) * height,
+          "map data holds " + std::to_string(data_.size()) +
+              " cells, width x height = " + std::to_string(width) + " x " + std::to_string(height));
+  Require(std::isfinite(resolution_m) && resolution_m > 0.0,
+          "map resolution must be a finite number > 0 (metres per cell)");
+  Require(Finite(origin), "map origin (x, y, yaw) must be finite");
+  for (std::size_t k = 0; k < data_.size(); ++k) {
+    Require(data_[k] >= -1 && data_[k] <= 100,
+            "map cell " + std::to_string(k) + " (column " + std::to_string(k % width) + ", row " +
+                std::to_string(k / width) + ") is " + std::to_string(data_[k]) +
+                "; OccupancyGrid cells are -1 (unknown) or 0..100");
+  }
+}
+
+std::int8_t Map::at(int i, int j) const {
+  if (i < 0 || j < 0 || i >= width_ || j >= height_) return -1;
+  return data_[static_cast<std::size_t>(j) * width_ + i];
+}
+
+Map LoadMap(const std::string& path) {
+  return Translated([&] {
+    const std::filesystem::path p(path);
+    if (IsOctreePath(p)) {
+      JobOctree octree;
+      return FromGrid(LoadOctreeMap(p, OctreeOptions{}, octree).grid, p.stem().string());
+    }
+    return FromGrid(LoadMap(p, kDefaultMaxMapCells).grid, p.stem().string());
+  });
+}
+
+void SaveMap(const Map& map, const std::string& yaml_path) {
+  const OccupancyGrid grid = ToGrid(map);
+  Translated([&] { SaveMap(grid, std::filesystem::path(yaml_path), {}); });
+}
+
+std::vector<Hypothesis> Pair(const Map& a, const Map& b, const Options& options) {
+  const PairOptions pair_options = ToFleetOptions(options).pair;
+  const OccupancyGrid grid_a = ToGrid(a), grid_b = ToGrid(b);
+  return Translated([&] {
+    std::vector<Hypothesis> out;
+    for (const PairHypothesis& h : MergePair(grid_a, grid_b, pair_options).hypotheses) {
+      out.push_back({h.T_a_b.x_m(), h.T_a_b.y_m(), h.T_a_b.yaw_rad(), h.omega});
+    }
+    return out;
+  });
+}
+
+MergeResult Merge(const std::vector<Map>& maps, const Options& options,
+                  const std::string& out_dir) {
+  Require(!maps.empty(), "merge needs at least one map");
+  const auto start = std::chrono::steady_clock::now();
+  Job job;
+  job.name = "merge";
+  job.output_dir = out_dir;
+  job.options = ToFleetOptions(options);
+  std::vector<LoadedMap> loaded;
+  for (std::size_t m = 0; m < maps.size(); ++m) {
+    const std::string name =
+        maps[m].name().empty() ? "map" + std::to_string(m + 1) : maps[m].name();
+    for (const JobMap& earlier : job.maps) {
+      Require(earlier.name != name, "two maps are named '" + name + "' (names must be distinct)");
+    }
+    job.maps.push_back({name, {}, {}});
+    LoadedMap l;
+    l.grid = ToGrid(maps[m]);
+    l.metadata.resolution_m = maps[m].resolution();
+    loaded.push_back(std::move(l));
+  }
+  job.reference = options.reference.empty() ? job.maps.front().name : options.reference;
+  bool found = false;
+  for (const JobMap& m : job.maps) found = found || m.name == job.reference;
+  Require(found, "reference '" + job.reference + "' is not one of the maps' names");
+  return Translated([&] {
+    JobRunOptions run;
+    run.write = !out_dir.empty();
+    const JobOutcome outcome = RunLoadedJob(job, loaded, {}, MillisecondsSince(start), run);
+    return ToResult(job, outcome);
+  });
+}
+
+MergeResult MergeFiles(const std::vector<std::string>& paths, const Options& options,
+                       const std::string& out_dir) {
+  Require(!paths.empty(), "merge needs at least one map");
+  const FleetOptions fleet_options = ToFleetOptions(options);
+  return Translated([&] {
+    const std::vector<std::filesystem::path> files(paths.begin(), paths.end());
+    const Job job = MapListJob(files, out_dir, Reference(options), fleet_options);
+    JobRunOptions run;
+    run.write = !out_dir.empty();
+    return ToResult(job, RunJob(job, run));
+  });
+}
+
+}  // namespace fleetmerge

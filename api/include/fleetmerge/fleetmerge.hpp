@@ -1,0 +1,155 @@
+// fleetmerge as a library: the one public header of the installed package.
+//
+//   find_package(fleetmerge CONFIG REQUIRED)
+//   target_link_libraries(app PRIVATE fleetmerge::fleetmerge)
+//
+//   #include <fleetmerge/fleetmerge.hpp>
+//   const fleetmerge::Map a = fleetmerge::LoadMap("robot1/map.yaml");
+//   const fleetmerge::Map b = fleetmerge::LoadMap("robot2/map.yaml");
+//   for (const fleetmerge::Hypothesis& h : fleetmerge::Pair(a, b)) { ... }  // best first
+//
+// The header needs nothing but the C++17 standard library: OpenCV, Eigen, Ceres, OctoMap and
+// yaml-cpp stay inside libfleetmerge.so. Every result equals what the `fleetmerge` command prints
+// for the same inputs and options (`fleetmerge pair --json`, report.json of `fleetmerge merge`).
+// Errors are std::invalid_argument for arguments that break the documented contract and
+// std::runtime_error (with the command's message, naming the file and what was wrong) for bad
+// input files and failed jobs.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace fleetmerge {
+
+// The package version (CMake project version).
+std::string Version();
+
+// A planar pose: metres and radians.
+struct Pose2D {
+  double x = 0.0;
+  double y = 0.0;
+  double yaw = 0.0;
+};
+
+// An occupancy grid map in ROS nav_msgs/OccupancyGrid convention: `data` holds width x height
+// cells row by row, row 0 at the origin (the bottom row of a map_server image); -1 is unknown and
+// 0..100 the occupancy probability in percent. `origin` is the pose of cell (0, 0)'s outer corner
+// in the map frame (OccupancyGrid info.origin, yaw from its quaternion).
+//
+// fleetmerge works on three states, as map_server does with its default thresholds: a cell is
+// occupied above 65, free below 19.6 (free_thresh 0.196), unknown otherwise. Maps fleetmerge
+// returns hold only 100, 0 and -1.
+class Map {
+ public:
+  Map() = default;
+  // Throws std::invalid_argument unless data.size() == width * height, width and height are
+  // positive, resolution is finite and > 0, origin is finite and every cell is -1 or 0..100.
+  Map(std::vector<std::int8_t> data, int width, int height, double resolution_m, Pose2D origin = {},
+      std::string name = "");
+
+  const std::vector<std::int8_t>& data() const { return data_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  double resolution() const { return resolution_m_; }  // metres per cell
+  const Pose2D& origin() const { return origin_; }
+  // Used in merge results and report.json; LoadMap names a map after its file stem.
+  const std::string& name() const { return name_; }
+  void set_name(std::string name) { name_ = std::move(name); }
+  // The cell (i, j) (column i, row j from the origin), -1 outside the map.
+  std::int8_t at(int i, int j) const;
+
+ private:
+  std::vector<std::int8_t> data_;
+  int width_ = 0;
+  int height_ = 0;
+  double resolution_m_ = 0.0;
+  Pose2D origin_;
+  std::string name_;
+};
+
+// Reads a map_server YAML (with its PGM/PNG image) or an OctoMap octree (.bt, .ot: its 2-D floor
+// plan, as `fleetmerge merge` uses it). Throws std::runtime_error naming the file on bad input.
+Map LoadMap(const std::string& path);
+
+// Writes `yaml_path` and a trinary PGM beside it (same stem), as map_server's map_saver does,
+// each atomically.
+void SaveMap(const Map& map, const std::string& yaml_path);
+
+// Parameters of Pair and Merge. Defaults are the command line's.
+struct Options {
+  int hypotheses = 4;               // Pair: hypotheses returned (`fleetmerge pair -n`)
+  double resolution = 0.0;          // Merge: compare and composite at this (0: the finest map's)
+  double omega_threshold = 0.9;     // Merge: best omega a pair needs to become an edge (Eq. 1)
+  int min_overlap_cells = 5000;     // Merge: cells known in both maps an edge needs
+  double min_wall_agreement = 0.8;  // Merge: symmetric wall agreement an edge needs
+  std::string fusion = "log-odds";  // Merge: log-odds | max | vote
+  std::string reference;            // Merge: the reference map's name (empty: the first map)
+  int threads = 0;                  // 0: all cores
+  bool refine = true;               // false: Carpin's hypotheses without the local refinement
+  std::string translation = "correlation";   // correlation (2-D FFT) | spectra (paper's X/Y)
+  std::int64_t max_map_cells = 100'000'000;  // Merge of files: larger images are refused
+  double octree_band_min = 0.3;  // Merge of octrees: floor plan height band above the floor (m)
+  double octree_band_max = 1.8;
+};
+
+// One transformation of b's map frame into a's: the pose of b's frame in a's frame, and its
+// acceptance index omega (Eq. 1 of Carpin's paper, 0..1).
+struct Hypothesis {
+  double x = 0.0;
+  double y = 0.0;
+  double yaw = 0.0;
+  double omega = 0.0;
+};
+
+// The hypotheses that overlay map b on map a, best (highest omega) first, at most
+// options.hypotheses of them: what `fleetmerge pair --json -n N a b` prints. Maps of different
+// resolutions are compared at the finer one. Empty when a map has no occupied cell.
+std::vector<Hypothesis> Pair(const Map& a, const Map& b, const Options& options = {});
+
+// Where one map went.
+struct MapPlacement {
+  std::string name;
+  int component = 0;
+  Pose2D pose;  // the map's frame in its component's merged frame (the reference map's frame)
+};
+
+// The decision on one pair of maps (a before b in input order).
+struct PairDecision {
+  std::string a, b;
+  double omega = 0.0;  // best hypothesis
+  bool accepted = false;
+  std::int64_t overlap_cells = 0;
+  double wall_agreement = 0.0;
+  std::string note;                    // why it was refused or dropped, when it was
+  std::vector<Hypothesis> hypotheses;  // b's frame in a's, best first
+};
+
+struct Component {
+  int id = 0;
+  std::vector<std::string> maps;
+  std::string reference;
+  std::optional<Map> merged;  // a component of two or more maps (or a one-map job)
+};
+
+struct MergeResult {
+  std::vector<MapPlacement> maps;  // in input order
+  std::vector<Component> components;
+  std::vector<PairDecision> pairs;
+  // report.json's contents (JSON text): the names above and everything else it holds.
+  std::string report_json;
+};
+
+// Merges a fleet's maps in memory; names must be distinct (an empty name becomes "map<k>",
+// 1-based). With `out_dir`, also writes the usual result set there (merged maps, previews,
+// report.json), replaced as a whole, as `fleetmerge merge --out` does.
+MergeResult Merge(const std::vector<Map>& maps, const Options& options = {},
+                  const std::string& out_dir = "");
+
+// Merges map files (map_server YAMLs, octrees) exactly as `fleetmerge merge --out DIR files...`
+// does, octrees included (merged_<c>.bt). Maps are named after their file stems.
+MergeResult MergeFiles(const std::vector<std::string>& paths, const Options& options = {},
+                       const std::string& out_dir = "");
+
+}  // namespace fleetmerge

@@ -1,0 +1,175 @@
+// fleetmerge._fleetmerge: the public C++ API (api/include/fleetmerge/fleetmerge.hpp) for Python,
+// with numpy arrays for map cells. python/fleetmerge/__init__.py adds the Pythonic layer (paths
+// or Maps, report as a dict, options as keywords).
+//
+// Arguments are checked here, before any C++ runs on them: an array of the wrong dtype, shape or
+// memory layout, a non-finite resolution or origin is a ValueError saying what was expected,
+// never a silent conversion and never a crash. The GIL is released while pairs and merges run.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "fleetmerge/fleetmerge.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+[[noreturn]] void ValueError(const std::string& what) { throw py::value_error(what); }
+
+fleetmerge::Pose2D OriginFrom(const py::handle& origin) {
+  if (!py::isinstance<py::sequence>(origin) || py::isinstance<py::str>(origin)) {
+    ValueError("origin must be a sequence (x, y, yaw) of 3 finite numbers (metres, radians)");
+  }
+  const auto seq = py::reinterpret_borrow<py::sequence>(origin);
+  if (seq.size() != 3) {
+    ValueError("origin must be (x, y, yaw): 3 numbers, got " + std::to_string(seq.size()));
+  }
+  double v[3];
+  for (int k = 0; k < 3; ++k) {
+    try {
+      v[k] = seq[k].cast<double>();
+    } catch (const py::cast_error&) {
+      ValueError("origin[" + std::to_string(k) + "] must be a number");
+    }
+    if (!std::isfinite(v[k])) ValueError("origin[" + std::to_string(k) + "] must be finite");
+  }
+  return {v[0], v[1], v[2]};
+}
+
+// A numpy int8 array, height x width, C-contiguous: OccupancyGrid's data reshaped.
+fleetmerge::Map MapFromArray(const py::handle& data, const py::handle& resolution,
+                             const py::handle& origin, const std::string& name) {
+  if (!py::isinstance<py::array>(data)) {
+    ValueError(
+        "data must be a numpy array of int8 (height x width, nav_msgs/OccupancyGrid "
+        "values), got " +
+        std::string(py::str(py::type::of(data))));
+  }
+  const auto array = py::reinterpret_borrow<py::array>(data);
+  const py::dtype dtype = array.dtype();
+  if (dtype.kind() != 'i' || dtype.itemsize() != 1) {
+    ValueError("data must have dtype int8 (OccupancyGrid cells: -1 unknown, 0..100), got " +
+               std::string(py::str(static_cast<const py::handle&>(dtype))) +
+               "; convert with numpy.asarray(data, dtype=numpy.int8)");
+  }
+  if (array.ndim() != 2) {
+    ValueError("data must be 2-D (height x width), got " + std::to_string(array.ndim()) +
+               " dimension(s); reshape OccupancyGrid data with .reshape(height, width)");
+  }
+  if (!(array.flags() & py::array::c_style)) {
+    ValueError(
+        "data must be C-contiguous (row-major, row 0 at the origin); use "
+        "numpy.ascontiguousarray(data)");
+  }
+  double resolution_m = 0.0;
+  try {
+    resolution_m = resolution.cast<double>();
+  } catch (const py::cast_error&) {
+    ValueError("resolution must be a number (metres per cell)");
+  }
+  if (!std::isfinite(resolution_m) || resolution_m <= 0.0) {
+    ValueError("resolution must be a finite number > 0 (metres per cell), got " +
+               std::string(py::str(resolution)));
+  }
+  const fleetmerge::Pose2D pose = OriginFrom(origin);
+  const auto height = static_cast<std::size_t>(array.shape(0));
+  const auto width = static_cast<std::size_t>(array.shape(1));
+  if (width == 0 || height == 0) ValueError("data must hold at least one cell");
+  std::vector<std::int8_t> cells(width * height);
+  std::memcpy(cells.data(), array.data(), cells.size());
+  try {
+    return fleetmerge::Map(std::move(cells), static_cast<int>(width), static_cast<int>(height),
+                           resolution_m, pose, name);
+  } catch (const std::invalid_argument& e) {
+    ValueError(e.what());
+  }
+}
+
+py::array_t<std::int8_t> ArrayOf(const fleetmerge::Map& map) {
+  py::array_t<std::int8_t> out({map.height(), map.width()});
+  std::memcpy(out.mutable_data(), map.data().data(), map.data().size());
+  return out;
+}
+
+py::tuple TupleOf(const fleetmerge::Pose2D& p) { return py::make_tuple(p.x, p.y, p.yaw); }
+
+}  // namespace
+
+PYBIND11_MODULE(_fleetmerge, m) {
+  m.doc() = "fleetmerge's C++ library (use the fleetmerge package, not this module)";
+  m.attr("__version__") = fleetmerge::Version();
+
+  py::class_<fleetmerge::Map>(m, "Map")
+      .def(py::init([](const py::object& data, const py::object& resolution,
+                       const py::object& origin, const std::string& name) {
+             return MapFromArray(data, resolution, origin, name);
+           }),
+           py::arg("data"), py::arg("resolution"), py::arg("origin") = py::make_tuple(0, 0, 0),
+           py::arg("name") = "")
+      .def_property_readonly("data", &ArrayOf, "cells, int8, height x width (a copy)")
+      .def_property_readonly("resolution", &fleetmerge::Map::resolution)
+      .def_property_readonly("origin",
+                             [](const fleetmerge::Map& map) { return TupleOf(map.origin()); })
+      .def_property_readonly("width", &fleetmerge::Map::width)
+      .def_property_readonly("height", &fleetmerge::Map::height)
+      .def_property("name", &fleetmerge::Map::name, &fleetmerge::Map::set_name)
+      .def("__repr__", [](const fleetmerge::Map& map) {
+        return "<fleetmerge.Map '" + map.name() + "' " + std::to_string(map.width()) + "x" +
+               std::to_string(map.height()) + " @ " + std::to_string(map.resolution()) + " m>";
+      });
+
+  py::class_<fleetmerge::Hypothesis>(m, "Hypothesis")
+      .def_readonly("x", &fleetmerge::Hypothesis::x)
+      .def_readonly("y", &fleetmerge::Hypothesis::y)
+      .def_readonly("yaw", &fleetmerge::Hypothesis::yaw)
+      .def_readonly("omega", &fleetmerge::Hypothesis::omega)
+      .def("__repr__", [](const fleetmerge::Hypothesis& h) {
+        return "<fleetmerge.Hypothesis x=" + std::to_string(h.x) + " y=" + std::to_string(h.y) +
+               " yaw=" + std::to_string(h.yaw) + " omega=" + std::to_string(h.omega) + ">";
+      });
+
+  py::class_<fleetmerge::Options>(m, "Options")
+      .def(py::init<>())
+      .def_readwrite("hypotheses", &fleetmerge::Options::hypotheses)
+      .def_readwrite("resolution", &fleetmerge::Options::resolution)
+      .def_readwrite("omega_threshold", &fleetmerge::Options::omega_threshold)
+      .def_readwrite("min_overlap_cells", &fleetmerge::Options::min_overlap_cells)
+      .def_readwrite("min_wall_agreement", &fleetmerge::Options::min_wall_agreement)
+      .def_readwrite("fusion", &fleetmerge::Options::fusion)
+      .def_readwrite("reference", &fleetmerge::Options::reference)
+      .def_readwrite("threads", &fleetmerge::Options::threads)
+      .def_readwrite("refine", &fleetmerge::Options::refine)
+      .def_readwrite("translation", &fleetmerge::Options::translation)
+      .def_readwrite("max_map_cells", &fleetmerge::Options::max_map_cells)
+      .def_readwrite("octree_band_min", &fleetmerge::Options::octree_band_min)
+      .def_readwrite("octree_band_max", &fleetmerge::Options::octree_band_max);
+
+  py::class_<fleetmerge::MergeResult>(m, "MergeResult")
+      .def_readonly("report_json", &fleetmerge::MergeResult::report_json)
+      .def_property_readonly("merged", [](const fleetmerge::MergeResult& r) {
+        std::vector<fleetmerge::Map> merged;
+        for (const auto& c : r.components) {
+          if (c.merged) merged.push_back(*c.merged);
+        }
+        return merged;
+      });
+
+  // Errors: std::invalid_argument -> ValueError, std::runtime_error (the command's messages)
+  // -> RuntimeError, by pybind11's standard translation.
+  m.def("load_map", &fleetmerge::LoadMap, py::arg("path"),
+        py::call_guard<py::gil_scoped_release>());
+  m.def("save_map", &fleetmerge::SaveMap, py::arg("map"), py::arg("path"),
+        py::call_guard<py::gil_scoped_release>());
+  m.def("pair", &fleetmerge::Pair, py::arg("a"), py::arg("b"), py::arg("options"),
+        py::call_guard<py::gil_scoped_release>());
+  m.def("merge", &fleetmerge::Merge, py::arg("maps"), py::arg("options"), py::arg("out"),
+        py::call_guard<py::gil_scoped_release>());
+  m.def("merge_files", &fleetmerge::MergeFiles, py::arg("paths"), py::arg("options"),
+        py::arg("out"), py::call_guard<py::gil_scoped_release>());
+}
