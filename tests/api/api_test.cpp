@@ -1,0 +1,60 @@
+// The public API's defaults are the command line's, and its maps convert to and from core's
+// grids without loss (the installed-package and Python tests compare its results with the CLI).
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+#include "cli/merge_command.hpp"
+#include "cli/pair_command.hpp"
+#include "fleetmerge/fleetmerge.hpp"
+#include "job/fleet_options.hpp"
+
+namespace {
+
+TEST(Api, OptionDefaultsAreTheCommandLines) {
+  const fleetmerge::Options api;
+  const fleetmerge::FleetOptions fleet;  // merge's defaults (cli/main.cpp starts from these)
+  const fleetmerge::PairCommand pair;
+  EXPECT_EQ(api.hypotheses, pair.hypotheses);
+  EXPECT_EQ(api.resolution, fleet.resolution_m);
+  EXPECT_EQ(api.omega_threshold, fleet.omega_threshold);
+  EXPECT_EQ(api.min_overlap_cells, fleet.min_overlap_cells);
+  EXPECT_EQ(api.min_wall_agreement, fleet.min_wall_agreement);
+  EXPECT_EQ(api.fusion, "log-odds");
+  EXPECT_EQ(fleet.fusion, fleetmerge::FusionMode::kLogOdds);
+  EXPECT_EQ(api.threads, fleet.threads);
+  EXPECT_EQ(api.refine, fleet.pair.refine);
+  EXPECT_EQ(api.translation, "correlation");
+  EXPECT_EQ(fleet.pair.hypotheses.translation.method,
+            fleetmerge::TranslationMethod::kCorrelation2D);
+  EXPECT_EQ(api.max_map_cells, fleet.max_map_cells);
+  EXPECT_EQ(api.octree_band_min, fleet.octree.band_min_m);
+  EXPECT_EQ(api.octree_band_max, fleet.octree.band_max_m);
+}
+
+TEST(Api, MapChecksItsContract) {
+  EXPECT_THROW(fleetmerge::Map({0, 0, 0}, 2, 2, 0.05), std::invalid_argument);  // 3 != 2 x 2
+  EXPECT_THROW(fleetmerge::Map({0, 0, 0, 0}, 2, 2, -1.0), std::invalid_argument);
+  EXPECT_THROW(fleetmerge::Map({0, 0, 0, 101}, 2, 2, 0.05), std::invalid_argument);
+  EXPECT_THROW(fleetmerge::Map({0, 0, 0, 0}, 0, 4, 0.05), std::invalid_argument);
+  const fleetmerge::Map map({-1, 0, 50, 100}, 2, 2, 0.05, {1.0, 2.0, 0.5}, "m");
+  EXPECT_EQ(map.at(1, 1), 100);
+  EXPECT_EQ(map.at(0, 1), 50);
+  EXPECT_EQ(map.at(2, 0), -1);  // outside
+}
+
+TEST(Api, EmptyMapAndBadOptionsAreInvalidArguments) {
+  const fleetmerge::Map empty;
+  const fleetmerge::Map map({0, 100, 0, 100}, 2, 2, 0.05);
+  EXPECT_THROW(fleetmerge::Pair(empty, map), std::invalid_argument);
+  fleetmerge::Options options;
+  options.hypotheses = 0;
+  EXPECT_THROW(fleetmerge::Pair(map, map, options), std::invalid_argument);
+  options = {};
+  options.translation = "fft";
+  EXPECT_THROW(fleetmerge::Pair(map, map, options), std::invalid_argument);
+  EXPECT_THROW(fleetmerge::Merge({}), std::invalid_argument);
+  EXPECT_THROW(fleetmerge::LoadMap("/nonexistent/map.yaml"), std::runtime_error);
+}
+
+}  // namespace

@@ -1,0 +1,284 @@
+"""The Python module on real maps: the same numbers as the `fleetmerge` command, round trips,
+ValueErrors for bad arrays, RuntimeErrors with the command's messages, the GIL released.
+
+Run by ctest (tests/python/CMakeLists.txt) with Debian's /usr/bin/python3 -m pytest; the
+environment gives FLEETMERGE_EXECUTABLE, FLEETMERGE_SHARED_MAPS and PYTHONPATH.
+"""
+
+import json
+import math
+import os
+import subprocess
+import sys
+import threading
+import types
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import fleetmerge
+
+MAPS = Path(os.environ.get("FLEETMERGE_SHARED_MAPS", "../shared/data/maps"))
+CLI = os.environ.get("FLEETMERGE_EXECUTABLE", "fleetmerge")
+EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "python"
+
+needs_maps = pytest.mark.skipif(
+    not (MAPS / "robotis_corridor_run1.yaml").exists(),
+    reason=f"real maps not found in {MAPS} (../shared/data/maps beside the repository)")
+
+
+def real(name):
+    return str(MAPS / f"{name}.yaml")
+
+
+def cli(*args, check=True):
+    run = subprocess.run([CLI, *args], capture_output=True, text=True)
+    if check and run.returncode != 0:
+        raise AssertionError(f"fleetmerge {' '.join(args)} failed: {run.stderr}")
+    return run
+
+
+def without_timing(report):
+    report = dict(report)
+    report.pop("timing_ms")
+    return report
+
+
+# --- pair and merge equal the command line ------------------------------------------------------
+
+@needs_maps
+@pytest.mark.parametrize("a,b", [("robotis_corridor_run1", "robotis_corridor_run2"),
+                                 ("lab_pair_demo_1", "lab_pair_demo_2")])
+def test_pair_equals_cli_json(a, b):
+    expected = json.loads(cli("pair", "--json", "-n", "5", real(a), real(b)).stdout)
+    got = fleetmerge.pair(real(a), real(b), n=5)
+    assert len(got) == len(expected["hypotheses"]) == 5
+    for h, e in zip(got, expected["hypotheses"]):
+        # JSON prints doubles with round-trip precision: the numbers are the very same.
+        assert (h.x, h.y, h.yaw, h.omega) == (e["x"], e["y"], e["yaw"], e["omega"])
+    # Maps in memory give what their files give.
+    in_memory = fleetmerge.pair(fleetmerge.load_map(real(a)), fleetmerge.load_map(real(b)), n=5)
+    assert [(h.x, h.y, h.yaw, h.omega) for h in in_memory] == \
+        [(h.x, h.y, h.yaw, h.omega) for h in got]
+
+
+@needs_maps
+def test_merge_equals_cli_report(tmp_path):
+    paths = [real(f"robotis_corridor_run{k}") for k in (1, 2, 3)]
+    cli("merge", "--quiet", "--out", str(tmp_path / "cli"), *paths)
+    expected = json.loads((tmp_path / "cli" / "report.json").read_text())
+
+    result = fleetmerge.merge(paths, out=tmp_path / "py")
+    written = json.loads((tmp_path / "py" / "report.json").read_text())
+    assert without_timing(result.report) == without_timing(expected)
+    assert without_timing(written) == without_timing(expected)
+    # The three real runs of one corridor form one building (issue 3's measured edges).
+    assert len(expected["components"]) == 1
+    assert sum(p["accepted"] for p in expected["pairs"]) >= 2
+
+    # .merged holds the merged map that was written, cell for cell.
+    assert len(result.merged) == 1
+    on_disk = fleetmerge.load_map(tmp_path / "py" / "merged_0.yaml")
+    assert np.array_equal(result.merged[0].data, on_disk.data)
+    assert result.merged[0].origin == pytest.approx(on_disk.origin, abs=1e-9)
+    assert result.merged[0].resolution == pytest.approx(on_disk.resolution)
+
+    # Without out= nothing is written and the numbers are the same.
+    quiet = fleetmerge.merge(paths)
+    assert quiet.out is None
+    assert without_timing(quiet.report) == without_timing(expected)
+
+
+@needs_maps
+def test_merge_of_maps_in_memory_places_them_as_from_files():
+    names = ["robotis_corridor_run1", "robotis_corridor_run2", "robotis_corridor_run3"]
+    from_files = fleetmerge.merge([real(n) for n in names]).report
+    maps = [fleetmerge.load_map(real(n)) for n in names]
+    in_memory = fleetmerge.merge(maps, threads=1).report
+    assert [m["name"] for m in in_memory["maps"]] == names
+    for f, m in zip(from_files["maps"], in_memory["maps"]):
+        assert m["component"] == f["component"]
+        assert m["pose"] == f["pose"]
+        assert m["source"] == ""
+    assert [p["accepted"] for p in in_memory["pairs"]] == \
+        [p["accepted"] for p in from_files["pairs"]]
+
+
+@needs_maps
+def test_merge_options_reach_the_job():
+    paths = [real("robotis_corridor_run1"), real("robotis_corridor_run2")]
+    # An omega threshold no pair reaches leaves both maps unmerged, as on the command line.
+    report = fleetmerge.merge(paths, omega_threshold=1.0, reference="robotis_corridor_run2").report
+    assert len(report["components"]) == 2
+    assert not any(p["accepted"] for p in report["pairs"])
+    with pytest.raises(ValueError, match="unknown option 'omega'"):
+        fleetmerge.merge(paths, omega=0.5)
+    with pytest.raises(ValueError, match="fusion must be log-odds, max or vote"):
+        fleetmerge.merge(paths, fusion="mean")
+
+
+# --- maps: load, build, save ----------------------------------------------------------------------
+
+@needs_maps
+def test_load_map_reads_the_yaml():
+    m = fleetmerge.load_map(real("robotis_corridor_run1"))
+    assert m.name == "robotis_corridor_run1"
+    assert m.resolution == pytest.approx(0.05)
+    assert m.origin == pytest.approx((-10.0, -10.0, 0.0))
+    assert m.data.dtype == np.int8 and m.data.shape == (m.height, m.width) == (384, 384)
+    assert set(np.unique(m.data)) <= {-1, 0, 100}
+    # Row 0 is the image's bottom row (map_server flips): compare with the PGM read by hand.
+    pgm = (MAPS / "robotis_corridor_run1.pgm").read_bytes()
+    lines = [line for line in pgm.split(b"\n", 4)[:4] if not line.startswith(b"#")]
+    width, height = map(int, lines[1].split())
+    pixels = np.frombuffer(pgm[-width * height:], dtype=np.uint8).reshape(height, width)
+    occupied = (255 - pixels[-1].astype(float)) / 255 > 0.65
+    assert np.array_equal(m.data[0] == 100, occupied)
+
+
+@needs_maps
+def test_save_and_load_round_trip(tmp_path):
+    m = fleetmerge.load_map(real("lab_pair_demo_1"))
+    fleetmerge.save_map(m, tmp_path / "copy.yaml")
+    back = fleetmerge.load_map(tmp_path / "copy.yaml")
+    assert np.array_equal(back.data, m.data)
+    assert back.origin == pytest.approx(m.origin)
+    assert back.resolution == pytest.approx(m.resolution)
+    assert (tmp_path / "copy.pgm").exists()
+
+
+def test_map_from_occupancy_grid_values():
+    data = np.full((20, 30), -1, dtype=np.int8)
+    data[5, :] = 100     # a wall along row 5 (y = 5.5 cells from the origin)
+    data[6:, :] = 0
+    data[0, 0] = 66      # above map_server's occupied_thresh 0.65: occupied
+    data[0, 1] = 65      # not above it: unknown
+    data[0, 2] = 19      # below free_thresh 0.196: free
+    m = fleetmerge.Map(data, 0.1, (1.0, -2.0, 0.5), name="grid")
+    assert (m.width, m.height, m.name) == (30, 20, "grid")
+    assert m.origin == (1.0, -2.0, 0.5)
+    assert np.array_equal(m.data, data)  # kept as given
+
+
+def test_saved_map_is_trinary(tmp_path):
+    data = np.array([[66, 65, 19, -1], [100, 0, 50, 20]], dtype=np.int8)
+    fleetmerge.save_map(fleetmerge.Map(data, 0.05), tmp_path / "m.yaml")
+    back = fleetmerge.load_map(tmp_path / "m.yaml")
+    assert back.data.tolist() == [[100, -1, 0, -1], [100, 0, -1, -1]]
+
+
+# --- bad input ---------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("data,message", [
+    (np.zeros((4, 4), dtype=np.float64), "dtype int8"),
+    (np.zeros((4, 4), dtype=np.uint8), "dtype int8"),
+    (np.zeros((4, 4), dtype=np.int16), "dtype int8"),
+    (np.zeros(16, dtype=np.int8), "2-D"),
+    (np.zeros((2, 4, 4), dtype=np.int8), "2-D"),
+    (np.zeros((8, 8), dtype=np.int8)[:, ::2], "C-contiguous"),
+    (np.zeros((8, 8), dtype=np.int8).T[:, :3], "C-contiguous"),
+    (np.zeros((0, 4), dtype=np.int8), "at least one cell"),
+    (np.full((3, 3), 101, dtype=np.int8), "-1 \\(unknown\\) or 0..100"),
+    (np.full((3, 3), -2, dtype=np.int8), "-1 \\(unknown\\) or 0..100"),
+    ([[0, 0], [0, 0]], "numpy array"),
+])
+def test_bad_arrays_are_value_errors(data, message):
+    with pytest.raises(ValueError, match=message):
+        fleetmerge.Map(data, 0.05, (0, 0, 0))
+
+
+@pytest.mark.parametrize("resolution,origin,message", [
+    (float("nan"), (0, 0, 0), "resolution must be a finite number > 0"),
+    (float("inf"), (0, 0, 0), "resolution must be a finite number > 0"),
+    (0.0, (0, 0, 0), "resolution must be a finite number > 0"),
+    (-0.05, (0, 0, 0), "resolution must be a finite number > 0"),
+    ("0.05", (0, 0, 0), "resolution must be a number"),
+    (0.05, (0, float("nan"), 0), "origin\\[1\\] must be finite"),
+    (0.05, (0, 0, float("inf")), "origin\\[2\\] must be finite"),
+    (0.05, (0, 0), "3 numbers, got 2"),
+    (0.05, "xyz", "sequence"),
+    (0.05, (0, "a", 0), "origin\\[1\\] must be a number"),
+])
+def test_bad_resolution_and_origin_are_value_errors(resolution, origin, message):
+    with pytest.raises(ValueError, match=message):
+        fleetmerge.Map(np.zeros((4, 4), dtype=np.int8), resolution, origin)
+
+
+def test_bad_file_errors_carry_the_cli_message(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("image: missing.pgm\nresolution: .nan\norigin: [0, 0, 0]\n")
+    other = tmp_path / "other.yaml"
+    other.write_text("image: missing.pgm\nresolution: 0.05\norigin: [0, 0, 0]\n")
+    run = cli("pair", str(bad), str(other), check=False)
+    assert run.returncode == 1
+    cli_message = run.stderr.strip().removeprefix("fleetmerge: error: ")
+    with pytest.raises(RuntimeError) as error:
+        fleetmerge.load_map(bad)
+    assert str(error.value) == cli_message
+    assert str(bad) in str(error.value)
+    with pytest.raises(RuntimeError, match="missing"):
+        fleetmerge.pair(bad, other)
+    with pytest.raises(ValueError, match="Map or a path"):
+        fleetmerge.pair(42, other)
+
+
+def test_duplicate_names_and_bad_reference_are_value_errors():
+    m = fleetmerge.Map(np.zeros((4, 4), dtype=np.int8), 0.05, name="same")
+    with pytest.raises(ValueError, match="two maps are named 'same'"):
+        fleetmerge.merge([m, m])
+    with pytest.raises(ValueError, match="reference 'nope'"):
+        fleetmerge.merge([m], reference="nope")
+
+
+# --- threads -------------------------------------------------------------------------------------
+
+@needs_maps
+def test_gil_is_released_while_merging():
+    paths = [real(f"robotis_corridor_run{k}") for k in (1, 2, 3)]
+    done = threading.Event()
+    results = []
+
+    def work():
+        results.append(fleetmerge.merge(paths, threads=1))
+        done.set()
+
+    worker = threading.Thread(target=work)
+    worker.start()
+    ticks = 0
+    while not done.is_set():  # runs only while the worker does not hold the GIL
+        ticks += 1
+    worker.join()
+    assert results and len(results[0].report["maps"]) == 3
+    # A merge of three maps takes hundreds of milliseconds; a held GIL would leave this loop a
+    # handful of iterations at most (the interpreter switches every 5 ms only between bytecodes).
+    assert ticks > 10000
+
+
+# --- the README's ROS 2 conversion -----------------------------------------------------------------
+
+def fake_occupancy_grid():
+    """An object with nav_msgs/msg/OccupancyGrid's fields (no rclpy needed)."""
+    ns = types.SimpleNamespace
+    point = ns(x=0.0, y=0.0, z=0.0)
+    quaternion = ns(x=0.0, y=0.0, z=0.0, w=1.0)
+    info = ns(resolution=0.0, width=0, height=0, origin=ns(position=point, orientation=quaternion))
+    return ns(header=ns(frame_id="", stamp=None), info=info, data=[])
+
+
+@needs_maps
+def test_ros2_occupancy_grid_round_trip():
+    sys.path.insert(0, str(EXAMPLES))
+    try:
+        from ros2_occupancy_grid import map_from_msg, msg_from_map
+    finally:
+        sys.path.pop(0)
+    m = fleetmerge.load_map(real("lab_pair_demo_2"))
+    rotated = fleetmerge.Map(m.data, m.resolution, (m.origin[0], m.origin[1], 0.7), name="r")
+    msg = msg_from_map(rotated, fake_occupancy_grid(), frame_id="robot2/map")
+    assert msg.info.width == m.width and len(msg.data) == m.width * m.height
+    assert all(isinstance(v, int) for v in msg.data[:10])
+    back = map_from_msg(msg, name="r")
+    assert np.array_equal(back.data, m.data)
+    assert back.origin == pytest.approx((m.origin[0], m.origin[1], 0.7))
+    assert math.isclose(back.resolution, m.resolution)
