@@ -282,3 +282,20 @@ def test_ros2_occupancy_grid_round_trip():
     assert np.array_equal(back.data, m.data)
     assert back.origin == pytest.approx((m.origin[0], m.origin[1], 0.7))
     assert math.isclose(back.resolution, m.resolution)
+
+
+@needs_maps
+def test_readme_ros2_conversion_runs():
+    """The README's conversion code, as printed there, on message-shaped objects."""
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text()
+    blocks = readme.split("```python\n")[1:]
+    code = next(b.split("```")[0] for b in blocks if "def map_from_msg" in b)
+    namespace = {}
+    exec(compile(code, "README.md", "exec"), namespace)
+    m = fleetmerge.load_map(real("robotis_corridor_run3"))
+    shifted = fleetmerge.Map(m.data, m.resolution, (1.5, -2.0, -2.9), name="run3")
+    msg = namespace["msg_from_map"](shifted, fake_occupancy_grid(), frame_id="robot3/map")
+    assert msg.header.frame_id == "robot3/map"
+    back = namespace["map_from_msg"](msg, name="run3")
+    assert np.array_equal(back.data, m.data)
+    assert back.origin == pytest.approx((1.5, -2.0, -2.9))
