@@ -10,7 +10,7 @@
 //   space (free pixels not next to a wall pixel) costs free_penalty. The penalty both ways is
 //   what lets a small true overlap beat a large wrong one: a raw wall count grows with the
 //   overlap, and wrong overlaps of one building are large (simulated fleets in GDC and MIT CSAIL
-//   put the true translation 30-120th at the old settings; see README, "Accuracy suite").
+//   put the true translation 30-120th at the old settings; see docs/accuracy.md, "Accuracy suite").
 #pragma once
 
 #include <Eigen/Core>

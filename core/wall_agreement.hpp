@@ -4,7 +4,7 @@
 // Why beside omega (Eq. 1): omega counts free cells too, and free space dominates a map, so a
 // wrong alignment of one building's parts, or of two buildings, still scores 0.90-0.965 when
 // free regions happen to overlap. Walls landing on walls is far more selective: measured on cut
-// real maps, 0.98-1.00 for correct alignments and 0.06-0.63 for wrong ones (README).
+// real maps, 0.98-1.00 for correct alignments and 0.06-0.63 for wrong ones (docs/method.md).
 #pragma once
 
 #include "core/occupancy_grid.hpp"

@@ -17,7 +17,7 @@ struct FleetOptions {
   PairOptions pair;           // Hough, sampling, hypotheses per pair, translation, refinement
   // A pair becomes a pose-graph edge when its best hypothesis has omega >= omega_threshold, at
   // least min_overlap_cells cells known in both maps, and a symmetric wall agreement
-  // (core/wall_agreement.hpp) >= min_wall_agreement. Defaults from the measurements in README.
+  // (core/wall_agreement.hpp) >= min_wall_agreement. Defaults from the measurements in docs/method.md.
   double omega_threshold = 0.9;
   int min_overlap_cells = 5000;
   double min_wall_agreement = 0.8;

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Accuracy on simulated fleets that the ctest suite does not use (other seeds, harder options):
-# the held-out check behind the README's "Accuracy suite" numbers. Needs a build
+# the held-out check behind docs/accuracy.md's "Accuracy suite" numbers. Needs a build
 # (scripts/build.sh) and ../shared/data/maps. Usage: scripts/heldout_accuracy.sh [OUT_DIR]
 # Prints one line per case (pairs, coarse, fine, false merges) and the totals.
 set -euo pipefail

@@ -10,7 +10,7 @@
 // target for later work.
 //
 // Willow Garage is printed separately and not asserted: the method fails there today (see
-// README, "Accuracy suite").
+// docs/accuracy.md, "Accuracy suite").
 #include <gtest/gtest.h>
 
 #include <cstdio>

@@ -2,7 +2,7 @@
 // seeded random rigid motion and resampled (sim/ground_truth_pair.hpp). The best hypothesis
 // must be within 1 degree and 3 cells (mean displacement of b's walls) in >= 95 % of the trials
 // per map; the fine rate (0.25 degree, 1 cell) is asserted at >= 80 %. CI runs the first 30
-// trials of each map (its time budget); FLEETMERGE_FULL_ACCURACY=1 runs the 100 that the README
+// trials of each map (its time budget); FLEETMERGE_FULL_ACCURACY=1 runs the 100 that docs/accuracy.md
 // quotes (the first 30 are the same trials).
 //
 // FLEETMERGE_ACCURACY_METHOD=spectra or =spectra-unrefined runs the same trials with the paper's
