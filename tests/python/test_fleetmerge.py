@@ -33,7 +33,10 @@ def real(name):
 
 
 def cli(*args, check=True):
-    run = subprocess.run([CLI, *args], capture_output=True, text=True)
+    # Under the sanitizers the interpreter runs with clang's shared ASan runtime preloaded
+    # (tests/python/CMakeLists.txt); the command has its own, linked in.
+    env = {k: v for k, v in os.environ.items() if k != "LD_PRELOAD"}
+    run = subprocess.run([CLI, *args], capture_output=True, text=True, env=env)
     if check and run.returncode != 0:
         raise AssertionError(f"fleetmerge {' '.join(args)} failed: {run.stderr}")
     return run
