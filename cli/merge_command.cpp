@@ -5,8 +5,10 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <optional>
 #include <ostream>
+#include <string>
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
@@ -25,19 +27,43 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// "about 12 s left" for a stage `done` of `total` into it since `start`: its mean time per unit
+// of work so far times the units left (pairs differ in cost, so this is a rough guide).
+std::string TimeLeft(Clock::time_point start, int done, int total) {
+  if (done <= 0 || done >= total) return "";
+  const double seconds = MillisecondsSince(start) / 1000.0 * (total - done) / done;
+  char text[48];
+  std::snprintf(text, sizeof text, seconds < 10 ? "about %.1f s left" : "about %.0f s left",
+                seconds);
+  return text;
+}
+
 // A bar redrawn in place on a terminal; otherwise a line per stage about every quarter of its
-// work and at its end.
+// work and at its end. Before its end a stage also shows the time it has left.
 ProgressFn MakeProgress(const std::string& job, bool quiet, std::ostream& err) {
   if (quiet) return {};
   const bool terminal = isatty(fileno(stderr)) != 0;
-  return [job, terminal, &err](const std::string& stage, int done, int total) {
+  // The stage being timed, when it started (the previous stage's last call, or now for the
+  // first) and the last call (progress calls are serialised by the caller).
+  struct Timing {
+    std::string stage;
+    Clock::time_point stage_start = Clock::now(), last_call = Clock::now();
+  };
+  auto timing = std::make_shared<Timing>();
+  return [job, terminal, &err, timing](const std::string& stage, int done, int total) {
+    if (timing->stage != stage) timing->stage = stage, timing->stage_start = timing->last_call;
+    timing->last_call = Clock::now();
+    const std::string left = TimeLeft(timing->stage_start, done, total);
     if (terminal) {
       const int width = 30, filled = total > 0 ? width * done / total : width;
       err << "\r" << job << " " << stage << " [" << std::string(filled, '#')
           << std::string(width - filled, ' ') << "] " << done << "/" << total
-          << (done == total ? "\n" : "") << std::flush;
+          << (left.empty() ? "" : ", " + left) << "    " << (done == total ? "\n" : "")
+          << std::flush;
     } else if (done == total || (total >= 4 && done % ((total + 3) / 4) == 0)) {
-      err << job << ": " << stage << " " << done << "/" << total << "\n" << std::flush;
+      err << job << ": " << stage << " " << done << "/" << total
+          << (left.empty() ? "" : " (" + left + ")") << "\n"
+          << std::flush;
     }
   };
 }
