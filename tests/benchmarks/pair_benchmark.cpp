@@ -5,6 +5,7 @@
 // The maps: tests/benchmarks/bench_pair.hpp.
 #include <benchmark/benchmark.h>
 
+#include "core/acceptance_index.hpp"
 #include "core/hypothesis_generator.hpp"
 #include "io/map_io.hpp"
 #include "pipeline/composite.hpp"
@@ -51,6 +52,18 @@ void BM_PairWithRefinement(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(MergePair(Pair().a, Pair().b, options));
 }
 BENCHMARK(BM_PairWithRefinement)->Arg(100)->Arg(20)->Unit(benchmark::kMillisecond);
+
+// Omega (Eq. 1) of the pair under its true pose at full resolution: the count every hypothesis
+// and every refined candidate pays.
+void BM_Omega(benchmark::State& state) {
+  const OccupancyGrid& a = Pair().a;
+  const OccupancyGrid& b = Pair().b;
+  const Pose2 T_a_b(10.0, 7.5, 37.0 * M_PI / 180.0);
+  const Pose2 T_ga_gb = CellPoseFromMapPose(a.geometry(), b.geometry(), T_a_b);
+  const RowSpans spans = KnownRowSpans(b);
+  for (auto _ : state) benchmark::DoNotOptimize(CountAgreement(a, b, T_ga_gb, 1, &spans));
+}
+BENCHMARK(BM_Omega)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace fleetmerge
