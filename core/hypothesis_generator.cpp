@@ -9,6 +9,7 @@
 #include "core/acceptance_index.hpp"
 #include "core/circular_correlation.hpp"
 #include "core/error.hpp"
+#include "core/map_features.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -54,31 +55,33 @@ std::vector<Eigen::Vector2f> RotatePoints(const std::vector<Eigen::Vector2f>& po
 std::vector<CellHypothesis> GenerateHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
                                                const HypothesisOptions& options) {
   CheckSameResolution(a, b);
-  const auto a_points = OccupiedCellCenters(a);
-  const auto b_points = OccupiedCellCenters(b);
-  if (a_points.empty() || b_points.empty()) return {};
+  return GenerateHypotheses(MapFeatures(a, options), MapFeatures(b, options), options);
+}
 
-  const auto hs_a = HoughSpectrum(
-      ComputeHoughTransform(SamplePoints(a_points, options.hough_sampling), options.hough));
-  const auto hs_b = HoughSpectrum(
-      ComputeHoughTransform(SamplePoints(b_points, options.hough_sampling), options.hough));
+std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapFeatures& fb,
+                                               const HypothesisOptions& options) {
+  const OccupancyGrid& a = fa.grid;
+  const OccupancyGrid& b = fb.grid;
+  CheckSameResolution(a, b);
+  const std::vector<Eigen::Vector2f>& b_points = fb.occupied;
+  if (fa.occupied.empty() || b_points.empty()) return {};
+  const std::vector<double>& hs_a = fa.hough_spectrum;
+  const std::vector<double>& hs_b = fb.hough_spectrum;
 
-  const auto b_spectra_points = SamplePoints(b_points, options.spectra_sampling);
+  const std::vector<Eigen::Vector2f>& b_spectra_points = fb.spectra_points;
   std::unique_ptr<CorrelationTranslation> correlation;
   std::unique_ptr<XySpectraTranslation> spectra;
   if (options.translation.method == TranslationMethod::kCorrelation2D) {
     const double b_diagonal = std::hypot(double(b.width()), double(b.height()));
     correlation = std::make_unique<CorrelationTranslation>(a, b_diagonal, options.translation);
   } else {
-    spectra =
-        std::make_unique<XySpectraTranslation>(SamplePoints(a_points, options.spectra_sampling),
-                                               DominantDirection(hs_a), options.translation);
+    spectra = std::make_unique<XySpectraTranslation>(fa.spectra_points, DominantDirection(hs_a),
+                                                     options.translation);
   }
 
   // The correlation search also needs where b is open (core/translation_search.hpp).
-  const std::vector<Eigen::Vector2f> b_free_points =
-      correlation ? CellCenters(b, CellState::kFree) : std::vector<Eigen::Vector2f>{};
-  const RowSpans b_spans = KnownRowSpans(b);
+  const std::vector<Eigen::Vector2f>& b_free_points = fb.free;
+  const RowSpans& b_spans = fb.known_spans;
   std::vector<CellHypothesis> candidates;
   const bool sampled = b_spectra_points.size() != b_points.size();
   for (const double yaw : RotationCandidates(hs_a, hs_b, options.rotation_peaks)) {

@@ -6,10 +6,18 @@
 
 namespace fleetmerge {
 
-double WallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb) {
-  // One cell of tolerance: resampling a re-framed map moves walls by up to a cell.
-  cv::Mat1b near_wall = a.cells() == static_cast<std::uint8_t>(CellState::kOccupied);
+cv::Mat1b NearWallMask(const OccupancyGrid& grid) {
+  cv::Mat1b near_wall = grid.cells() == static_cast<std::uint8_t>(CellState::kOccupied);
   cv::dilate(near_wall, near_wall, cv::Mat());
+  return near_wall;
+}
+
+double WallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb) {
+  return WallAgreement(a, NearWallMask(a), b, T_ga_gb);
+}
+
+double WallAgreement(const OccupancyGrid& a, const cv::Mat1b& near_wall, const OccupancyGrid& b,
+                     const Pose2& T_ga_gb) {
   const auto occupied = static_cast<std::uint8_t>(CellState::kOccupied);
   const auto unknown = static_cast<std::uint8_t>(CellState::kUnknown);
   long on_known = 0, on_wall = 0;

@@ -7,6 +7,8 @@
 // real maps, 0.98-1.00 for correct alignments and 0.06-0.63 for wrong ones (docs/method.md).
 #pragma once
 
+#include <opencv2/core.hpp>
+
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
 
@@ -20,6 +22,14 @@ constexpr long kMinWallsJudged = 30;
 // T_ga_gb in cell units (as CountAgreement). Returns 0 when fewer than kMinWallsJudged walls of b
 // land on a's known cells.
 double WallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb);
+
+// 255 where a cell is within one cell (8-neighbourhood) of an occupied cell of `grid`: the
+// tolerance of WallAgreement (resampling a re-framed map moves walls by up to a cell).
+cv::Mat1b NearWallMask(const OccupancyGrid& grid);
+
+// WallAgreement with a's NearWallMask computed beforehand (once per map in a fleet).
+double WallAgreement(const OccupancyGrid& a, const cv::Mat1b& a_near_walls, const OccupancyGrid& b,
+                     const Pose2& T_ga_gb);
 
 // min(WallAgreement(a, b, T), WallAgreement(b, a, T^-1)): both maps' walls must agree.
 double SymmetricWallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb);

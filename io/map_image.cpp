@@ -3,15 +3,19 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <fstream>
 #include <iostream>
 #include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <sstream>
+#include <stdexcept>
 #include <vector>
 
 #include "core/error.hpp"
 #include "io/image_header.hpp"
-#include "io/native_stderr.hpp"
+#include "io/png_image.hpp"
 #include "io/pnm_header.hpp"
+#include "io/pnm_image.hpp"
 
 namespace fleetmerge {
 namespace fs = std::filesystem;
@@ -26,13 +30,12 @@ constexpr std::uint8_t kFreePixel = 254;
   throw Error(image_path.string() + ": " + what + " (the image of map " + yaml_path.string() + ")");
 }
 
-// Factor that brings samples onto 0..255. OpenCV already rescales 8-bit Netpbm files with a
-// maxval below 255, but returns 16-bit samples raw, so a 16-bit PGM is scaled by its maxval;
-// other 16-bit images span 0..65535 (v / 257).
-double SampleScale(const cv::Mat& raw, const fs::path& image_path) {
+// Factor that brings samples onto 0..255. DecodePnm already rescales 8-bit Netpbm samples but
+// returns 16-bit samples raw (0..maxval), so a 16-bit Netpbm file is scaled by its maxval; 16-bit
+// PNG samples span 0..65535 (v / 257).
+double SampleScale(const cv::Mat& raw, const std::optional<PnmHeader>& pnm) {
   if (raw.depth() == CV_8U) return 1.0;
-  const std::optional<PnmHeader> header = ReadPnmHeader(image_path);
-  if (header && header->maxval > 255) return 255.0 / header->maxval;
+  if (pnm && pnm->maxval > 255) return 255.0 / pnm->maxval;
   return 255.0 / 65535.0;
 }
 
@@ -41,7 +44,7 @@ MapImage Normalise(const cv::Mat& raw, double scale) {
   raw.convertTo(scaled, CV_64F, scale);
   std::vector<cv::Mat> channels;
   cv::split(scaled, channels);
-  // Channel layouts: grey, grey+alpha, colour (BGR), colour+alpha (BGRA).
+  // Channel layouts: grey, grey+alpha, colour, colour+alpha (the mean makes the order moot).
   const bool has_alpha = channels.size() == 2 || channels.size() == 4;
   const int colour_channels = static_cast<int>(channels.size()) - (has_alpha ? 1 : 0);
   MapImage image;
@@ -70,14 +73,12 @@ CellState Classify(double value, bool opaque, const MapMetadata& metadata) {
   return Threshold(occupancy, metadata);
 }
 
-// The decoder's complaint without OpenCV's source location ("... error: (-2:...) what").
-std::string FirstLine(const std::string& text) {
-  std::string line = text.substr(0, text.find('\n'));
-  const std::size_t what = line.rfind(") ");
-  if (line.find("OpenCV(") != std::string::npos && what != std::string::npos) {
-    line = line.substr(what + 2);
-  }
-  return line;
+std::string ReadWholeFile(const fs::path& path, const fs::path& yaml_path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (!in || !bytes) FailImage(path, yaml_path, "cannot be read");
+  return std::move(bytes).str();
 }
 
 std::string LowerExtension(const fs::path& path) {
@@ -91,34 +92,22 @@ std::string LowerExtension(const fs::path& path) {
 
 MapImage ReadMapImage(const fs::path& image_path, const fs::path& yaml_path,
                       std::int64_t max_cells) {
-  CheckImageHeader(image_path, yaml_path, max_cells);  // before OpenCV allocates anything
+  CheckImageHeader(image_path, yaml_path, max_cells);  // before anything is allocated
+  const std::string bytes = ReadWholeFile(image_path, yaml_path);
+  const bool is_pnm = bytes.size() >= 2 && bytes[0] == 'P';  // else PNG (CheckImageHeader)
+  const std::optional<PnmHeader> pnm =
+      is_pnm ? ReadPnmHeader(image_path) : std::optional<PnmHeader>();
   cv::Mat raw;
-  std::string decode_error;
-  const std::string library_text = CaptureNativeStderr([&] {
-    try {
-      raw = cv::imread(image_path.string(), cv::IMREAD_UNCHANGED);
-    } catch (const cv::Exception& e) {
-      decode_error = e.msg;
-    }
-  });
-  if (raw.empty()) {
-    const std::string detail = !decode_error.empty() ? decode_error : FirstLine(library_text);
+  try {
+    raw = is_pnm ? DecodePnm(bytes, *pnm) : DecodePng(bytes);
+  } catch (const std::runtime_error& e) {
     FailImage(image_path, yaml_path,
-              "is not a readable PGM/PNG image" + (detail.empty() ? "" : " (" + detail + ")"));
-  }
-  std::cerr << library_text;  // a decoder's warnings about an image that did load
-  if (raw.depth() != CV_8U && raw.depth() != CV_16U) {
-    FailImage(image_path, yaml_path,
-              "has unsupported pixel depth (OpenCV depth " + std::to_string(raw.depth()) +
-                  "), expected 8- or 16-bit unsigned samples");
-  }
-  if (raw.channels() < 1 || raw.channels() > 4) {
-    FailImage(image_path, yaml_path,
-              "has " + std::to_string(raw.channels()) +
-                  " channels, expected 1 (grey), 2 (grey+alpha), 3 (RGB) or 4 (RGBA)");
+              std::string("is not a readable PGM/PNG image (") + e.what() + ")");
+  } catch (const cv::Exception& e) {  // allocation of the announced size failed
+    FailImage(image_path, yaml_path, "is not a readable PGM/PNG image (" + e.msg + ")");
   }
   if (raw.type() == CV_8UC1) return MapImage{{}, {}, raw};
-  return Normalise(raw, SampleScale(raw, image_path));
+  return Normalise(raw, SampleScale(raw, pnm));
 }
 
 cv::Mat1b PixelsToCells(const MapImage& image, const MapMetadata& metadata) {
@@ -188,16 +177,7 @@ std::string EncodeImage(const cv::Mat& image, const fs::path& path) {
   if (channels != 1 && channels != 3 && channels != 4) {
     fail("a PNG holds 1, 3 or 4 channels, got " + std::to_string(channels));
   }
-  std::vector<uchar> bytes;
-  const std::vector<int> params = {cv::IMWRITE_PXM_BINARY, 1};
-  try {
-    if (!cv::imencode(extension, image, bytes, extension == ".pgm" ? params : std::vector<int>{})) {
-      fail("OpenCV could not encode the image");
-    }
-  } catch (const cv::Exception& e) {
-    fail("OpenCV could not encode the image: " + e.msg);
-  }
-  return std::string(bytes.begin(), bytes.end());
+  return extension == ".pgm" ? EncodePgm(image) : EncodePng(image);
 }
 
 }  // namespace fleetmerge

@@ -25,7 +25,7 @@ struct MapImage {
   cv::Size size() const { return grey8.empty() ? value.size() : grey8.size(); }
 };
 
-// Decodes `image_path` (Netpbm or PNG as cv::imread reads them: PGM P2/P5, PNG grey,
+// Decodes `image_path` (Netpbm P1..P6 by io/pnm_image.hpp, PNG by io/png_image.hpp: grey,
 // grey+alpha, RGB, RGBA; 8- or 16-bit). Throws fleetmerge::Error "<image_path>: ..."
 // (mentioning `yaml_path`, the file that named it) when the file is empty, not an image, larger
 // than `max_cells` pixels or truncated (checked from its header before decoding: see

@@ -1,6 +1,6 @@
-// Reads the header of a Netpbm file (PBM/PGM/PPM, ASCII or binary). OpenCV decodes the pixels,
-// but it does not expose the header's maxval, which the loader needs: OpenCV rescales 8-bit
-// samples to 0..255 but returns 16-bit samples raw (a PGM with maxval 1023 gives 0..1023).
+// Reads the header of a Netpbm file (PBM/PGM/PPM, ASCII or binary). io/pnm_image.hpp decodes the
+// pixels after it; the loader also needs maxval to scale 16-bit samples (DecodePnm rescales 8-bit
+// samples to 0..255 but returns 16-bit samples raw: a PGM with maxval 1023 gives 0..1023).
 #pragma once
 
 #include <filesystem>

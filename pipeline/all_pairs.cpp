@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 #include <mutex>
 
 #include "core/hypothesis_generator.hpp"
+#include "core/map_features.hpp"
 #include "core/wall_agreement.hpp"
 #include "pipeline/parallel.hpp"
+#include "pipeline/prepared_map.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -19,7 +22,7 @@ constexpr double kOmegaTie = 0.01;
 
 // Moves to the front the hypothesis tied with the best (omega within kOmegaTie, enough overlap)
 // whose walls agree best; returns its wall agreement.
-double PromoteBestWalls(const OccupancyGrid& a, const OccupancyGrid& b,
+double PromoteBestWalls(const MapFeatures& a, const MapFeatures& b,
                         std::vector<CellHypothesis>& ranked, std::int64_t min_overlap_cells) {
   std::size_t best = 0;
   double best_walls = SymmetricWallAgreement(a, b, ranked.front().T_ga_gb);
@@ -33,16 +36,17 @@ double PromoteBestWalls(const OccupancyGrid& a, const OccupancyGrid& b,
   return best_walls;
 }
 
-PairOutcome ComputePair(const std::vector<OccupancyGrid>& maps, int a, int b,
+PairOutcome ComputePair(const std::vector<std::unique_ptr<PreparedMap>>& maps, int a, int b,
                         const PairOptions& options) {
   PairOutcome outcome;
   outcome.a = a;
   outcome.b = b;
-  const OccupancyGrid& ga = maps[a];
-  const OccupancyGrid& gb = maps[b];
-  std::vector<CellHypothesis> ranked = RankedCellHypotheses(ga, gb, options);
+  const OccupancyGrid& ga = maps[a]->grid();
+  const OccupancyGrid& gb = maps[b]->grid();
+  std::vector<CellHypothesis> ranked = RankedCellHypotheses(*maps[a], *maps[b], options);
   if (!ranked.empty()) {
-    outcome.wall_agreement = PromoteBestWalls(ga, gb, ranked, options.hypotheses.min_overlap_cells);
+    outcome.wall_agreement = PromoteBestWalls(maps[a]->features(), maps[b]->features(), ranked,
+                                              options.hypotheses.min_overlap_cells);
     outcome.overlap_cells = ranked.front().overlap_cells;
   }
   for (const CellHypothesis& h : ranked) {
@@ -61,11 +65,16 @@ std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
   for (int a = 0; a < static_cast<int>(maps.size()); ++a) {
     for (int b = a + 1; b < static_cast<int>(maps.size()); ++b) jobs.emplace_back(a, b);
   }
+  // Each map's own work once, shared by its maps.size() - 1 pairs (pipeline/prepared_map.hpp).
+  std::vector<std::unique_ptr<PreparedMap>> prepared(maps.size());
+  ParallelFor(maps.size(), threads, [&](std::size_t m) {
+    prepared[m] = std::make_unique<PreparedMap>(maps[m], options);
+  });
   std::vector<PairOutcome> outcomes(jobs.size());
   std::atomic<int> done{0};
   std::mutex progress_mutex;
   ParallelFor(jobs.size(), threads, [&](std::size_t k) {
-    outcomes[k] = ComputePair(maps, jobs[k].first, jobs[k].second, options);
+    outcomes[k] = ComputePair(prepared, jobs[k].first, jobs[k].second, options);
     const int finished = ++done;
     if (progress) {
       const std::lock_guard<std::mutex> lock(progress_mutex);

@@ -16,21 +16,19 @@ Pose2 ScaleTranslation(const Pose2& T, double factor) {
 // coarser than a and b (the cell-unit poses scale by 1 / scale), and b's known spans for omega
 // at full resolution.
 struct PairContext {
-  PairContext(const OccupancyGrid& a, const OccupancyGrid& b, int scale, double truncation)
-      : a(a),
-        b(b),
+  PairContext(const PreparedMap& a, const PreparedMap& b, int scale)
+      : a(a.grid()),
+        b(b.grid()),
         scale(scale),
-        target_a(Coarse(a, scale), truncation),
-        target_b(Coarse(b, scale), truncation),
-        b_spans(KnownRowSpans(b)) {}
-  static OccupancyGrid Coarse(const OccupancyGrid& grid, int scale) {
-    return scale == 1 ? grid : ResampleToResolution(grid, grid.geometry().resolution_m() * scale);
-  }
+        target_a(a.Target(scale)),
+        target_b(b.Target(scale)),
+        b_spans(b.features().known_spans) {}
   const OccupancyGrid& a;
   const OccupancyGrid& b;
   int scale;
-  AlignmentTarget target_a, target_b;
-  RowSpans b_spans;
+  const AlignmentTarget& target_a;
+  const AlignmentTarget& target_b;
+  const RowSpans& b_spans;
 };
 
 // Refines each hypothesis and keeps the refined pose unless omega (at full resolution) says it
@@ -63,19 +61,28 @@ int CoarseScale(const OccupancyGrid& a, const OccupancyGrid& b, const PairOption
 
 std::vector<CellHypothesis> RankedCellHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
                                                  const PairOptions& options) {
+  return RankedCellHypotheses(PreparedMap(a, options), PreparedMap(b, options), options);
+}
+
+std::vector<CellHypothesis> RankedCellHypotheses(const PreparedMap& prepared_a,
+                                                 const PreparedMap& prepared_b,
+                                                 const PairOptions& options) {
+  const OccupancyGrid& a = prepared_a.grid();
+  const OccupancyGrid& b = prepared_b.grid();
   const int wanted = options.hypotheses.max_hypotheses;
   HypothesisOptions generation = options.hypotheses;
   if (options.refine) generation.max_hypotheses *= std::max(options.candidates_per_hypothesis, 1);
-  std::vector<CellHypothesis> hypotheses = GenerateHypotheses(a, b, generation);
+  std::vector<CellHypothesis> hypotheses =
+      GenerateHypotheses(prepared_a.features(), prepared_b.features(), generation);
   if (options.refine && !hypotheses.empty()) {
     // Coarse-to-fine: every candidate on coarse grids with a wide basin, then the best at full
     // resolution.
     const int scale = CoarseScale(a, b, options);
-    RefineAll(PairContext(a, b, scale, options.refine_truncation_cells), hypotheses,
-              options.quick_refine, options.hypotheses.min_overlap_cells);
+    RefineAll(PairContext(prepared_a, prepared_b, scale), hypotheses, options.quick_refine,
+              options.hypotheses.min_overlap_cells);
     const std::size_t best = std::min<std::size_t>(options.final_refine_count, hypotheses.size());
     std::vector<CellHypothesis> head(hypotheses.begin(), hypotheses.begin() + best);
-    RefineAll(PairContext(a, b, 1, options.refine_truncation_cells), head, options.final_refine,
+    RefineAll(PairContext(prepared_a, prepared_b, 1), head, options.final_refine,
               options.hypotheses.min_overlap_cells);
     std::copy(head.begin(), head.end(), hypotheses.begin());
     SortHypotheses(hypotheses, options.hypotheses.min_overlap_cells);

@@ -9,6 +9,7 @@
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
 #include "job/pair_options.hpp"
+#include "pipeline/prepared_map.hpp"
 
 namespace fleetmerge {
 
@@ -29,6 +30,10 @@ PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairO
 
 // The hypotheses of two maps that already share a resolution, best first, in cell units.
 std::vector<CellHypothesis> RankedCellHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
+                                                 const PairOptions& options);
+// The same on maps prepared once (pipeline/prepared_map.hpp) with the same options: what a fleet
+// uses, so that each map's own work is shared by all its pairs.
+std::vector<CellHypothesis> RankedCellHypotheses(const PreparedMap& a, const PreparedMap& b,
                                                  const PairOptions& options);
 
 }  // namespace fleetmerge

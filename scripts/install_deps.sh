@@ -7,7 +7,7 @@ packages=(
   build-essential cmake git pkg-config
   libeigen3-dev libceres-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
-  liboctomap-dev libyaml-cpp-dev
+  liboctomap-dev libyaml-cpp-dev libspng-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests

@@ -2,53 +2,21 @@
 // with 5 / 20 / 50 % random sampling of the Hough transform and the translation points. Run:
 //   ./build/tests/benchmarks/pair_benchmark --benchmark_repetitions=7
 //       --benchmark_report_aggregates_only=true   (one command line)
-// The maps are cut from the Intel lab map in ../shared (or a synthetic office without it); b is
-// rotated by 37 degrees and shifted by (10, 7.5) m.
+// The maps: tests/benchmarks/bench_pair.hpp.
 #include <benchmark/benchmark.h>
 
-#include <cmath>
-#include <cstdio>
-#include <opencv2/imgproc.hpp>
-
+#include "core/acceptance_index.hpp"
 #include "core/hypothesis_generator.hpp"
 #include "io/map_io.hpp"
 #include "pipeline/composite.hpp"
 #include "pipeline/pair_merge.hpp"
-#include "sim/synthetic_office.hpp"
-#include "tests/support/shared_data.hpp"
+#include "tests/benchmarks/bench_pair.hpp"
 
 namespace fleetmerge {
 namespace {
 
-constexpr int kSide = 530;
-
-struct BenchPair {
-  OccupancyGrid a, b;
-};
-
 const BenchPair& Pair() {
-  static const BenchPair pair = [] {
-    OccupancyGrid building;
-    if (const auto dir = testing::SharedMapsDir()) {
-      building = LoadMap(*dir / "intel_lab.yaml").grid;
-    } else {
-      std::fprintf(stderr, "shared maps absent: benchmarking a synthetic office instead\n");
-      OfficeOptions office;
-      office.width_m = office.height_m = 40.0;
-      building = GenerateOfficeFloor(office, 1);
-    }
-    const double r = building.geometry().resolution_m();
-    const cv::Rect box = cv::boundingRect(building.cells() != 0);
-    const Eigen::Vector2d corner =
-        building.geometry().T_map_grid() * Eigen::Vector2d(box.x * r, box.y * r);
-    const GridGeometry window(r, {kSide, kSide});
-    const Pose2 T_building_a(corner, 0.0);
-    const Pose2 T_building_b = T_building_a * Pose2(10.0, 7.5, 37.0 * M_PI / 180.0);
-    BenchPair p;
-    p.a = SampleOnto({&building, T_building_a.inverse()}, window);
-    p.b = SampleOnto({&building, T_building_b.inverse()}, window);
-    return p;
-  }();
+  static const BenchPair pair = MakeBenchPair();
   return pair;
 }
 
@@ -84,6 +52,18 @@ void BM_PairWithRefinement(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(MergePair(Pair().a, Pair().b, options));
 }
 BENCHMARK(BM_PairWithRefinement)->Arg(100)->Arg(20)->Unit(benchmark::kMillisecond);
+
+// Omega (Eq. 1) of the pair under its true pose at full resolution: the count every hypothesis
+// and every refined candidate pays.
+void BM_Omega(benchmark::State& state) {
+  const OccupancyGrid& a = Pair().a;
+  const OccupancyGrid& b = Pair().b;
+  const Pose2 T_a_b(10.0, 7.5, 37.0 * M_PI / 180.0);
+  const Pose2 T_ga_gb = CellPoseFromMapPose(a.geometry(), b.geometry(), T_a_b);
+  const RowSpans spans = KnownRowSpans(b);
+  for (auto _ : state) benchmark::DoNotOptimize(CountAgreement(a, b, T_ga_gb, 1, &spans));
+}
+BENCHMARK(BM_Omega)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace fleetmerge

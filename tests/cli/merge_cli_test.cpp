@@ -52,7 +52,8 @@ std::set<std::string> FilesIn(const fs::path& folder) {
 
 // Progress lines on a stderr that is not a terminal: "<job>: <stage> <done>/<total>".
 std::vector<std::string> ProgressLines(const std::string& err, const std::string& stage) {
-  const std::regex line_format("^[^:]+: " + stage + " [0-9]+/[0-9]+$");
+  const std::regex line_format("^[^:]+: " + stage +
+                               " [0-9]+/[0-9]+( \\(about [0-9.]+ s left\\))?$");
   std::vector<std::string> lines;
   std::istringstream in(err);
   for (std::string line; std::getline(in, line);) {
@@ -272,6 +273,21 @@ TEST_F(MergeCliTest, ProgressLinesOnStderrUnlessQuiet) {
   ASSERT_EQ(quiet.exit_code, 0) << quiet.both();
   EXPECT_EQ(quiet.err, "");
   EXPECT_TRUE(fs::exists(dir / "quiet" / "report.json"));
+}
+
+TEST_F(MergeCliTest, ProgressShowsTheTimeLeftBeforeAStageEnds) {
+  // 4 maps, 6 pairs: lines at 2/6 and 4/6 with the time left, and 6/6 without.
+  const fs::path out = testing::MakeTempDir("merge_progress_left") / "out";
+  const fs::path other_b = *dir_ / "seed2" / "other_robot_b.yaml";  // its YAML names robot_b.pgm
+  if (!fs::exists(other_b)) fs::copy_file(*dir_ / "seed2" / "robot_b.yaml", other_b);
+  const auto run =
+      Fleetmerge("merge --out " + ShellQuote(out) + Maps({A(), B(), Other(), other_b}));
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  const std::vector<std::string> pairs = ProgressLines(run.err, "pairs");
+  ASSERT_EQ(pairs.size(), 3u) << run.err;
+  EXPECT_NE(pairs[0].find("pairs 2/6 (about "), std::string::npos) << pairs[0];
+  EXPECT_NE(pairs[1].find("pairs 4/6 (about "), std::string::npos) << pairs[1];
+  EXPECT_EQ(pairs[2], "merge: pairs 6/6");
 }
 
 TEST_F(MergeCliTest, MapOfAnotherBuildingStaysUnmerged) {

@@ -164,6 +164,14 @@ TEST(MapIoTest, EightBitPgmWithSmallMaxval) {
   EXPECT_EQ(ft::RenderTopFirst(map.grid), (Rows{"#.?"}));
 }
 
+TEST(MapIoTest, BinaryPgmWithSmallMaxvalIsRescaledToo) {
+  // maxval is white in binary files as in ASCII ones (OpenCV, the former decoder, returned
+  // binary samples raw, so 100 read as dark grey: occupied).
+  const LoadedMap map =
+      LoadGenerated("map_io_p5_100", "m.pgm", std::string("P5\n3 1\n100\n\x00\x64\x32", 14));
+  EXPECT_EQ(ft::RenderTopFirst(map.grid), (Rows{"#.?"}));
+}
+
 TEST(MapIoTest, ExactBytesOfA3x2AsciiPgm) {
   const LoadedMap map = LoadGenerated("map_io_p2_exact", "m.pgm",
                                       "P2\n# a comment\n3 2\n255\n254 254 0\n0 205 254\n");

@@ -1,0 +1,31 @@
+#include "core/map_features.hpp"
+
+#include <algorithm>
+
+#include "core/hough_spectrum.hpp"
+#include "core/point_sampling.hpp"
+#include "core/wall_agreement.hpp"
+
+namespace fleetmerge {
+
+MapFeatures::MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& options)
+    : grid(grid),
+      occupied(OccupiedCellCenters(grid)),
+      free(options.translation.method == TranslationMethod::kCorrelation2D
+               ? CellCenters(grid, CellState::kFree)
+               : std::vector<Eigen::Vector2f>{}),
+      spectra_points(SamplePoints(occupied, options.spectra_sampling)),
+      known_spans(KnownRowSpans(grid)),
+      near_walls(NearWallMask(grid)) {
+  if (!occupied.empty()) {
+    hough_spectrum = HoughSpectrum(
+        ComputeHoughTransform(SamplePoints(occupied, options.hough_sampling), options.hough));
+  }
+}
+
+double SymmetricWallAgreement(const MapFeatures& a, const MapFeatures& b, const Pose2& T_ga_gb) {
+  return std::min(WallAgreement(a.grid, a.near_walls, b.grid, T_ga_gb),
+                  WallAgreement(b.grid, b.near_walls, a.grid, T_ga_gb.inverse()));
+}
+
+}  // namespace fleetmerge

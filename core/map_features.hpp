@@ -1,0 +1,40 @@
+// What the hypothesis search (Algorithm 1) needs of ONE map, whichever map it is paired with:
+// its occupied and free cell centres, its Hough spectrum (Section III-A, sampled as in III-D),
+// the points of its X/Y spectra, its known row spans (omega, Eq. 1) and its near-wall mask (wall
+// agreement). In a fleet of N maps every map is in N - 1 pairs; computing these once per map
+// instead of once per pair gives the same numbers at a fraction of the cost.
+#pragma once
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+#include <vector>
+
+#include "core/acceptance_index.hpp"
+#include "core/hypothesis_generator.hpp"
+#include "core/occupancy_grid.hpp"
+
+namespace fleetmerge {
+
+struct MapFeatures {
+  // Keeps a reference to `grid`, which must outlive the features.
+  MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& options);
+
+  const OccupancyGrid& grid;
+  std::vector<Eigen::Vector2f> occupied;        // OccupiedCellCenters(grid)
+  std::vector<Eigen::Vector2f> free;            // CellCenters(grid, kFree): correlation search
+  std::vector<Eigen::Vector2f> spectra_points;  // occupied, sampled by spectra_sampling
+  std::vector<double> hough_spectrum;           // of occupied sampled by hough_sampling; empty
+                                                // when the map has no occupied cell
+  RowSpans known_spans;                         // KnownRowSpans(grid)
+  cv::Mat1b near_walls;                         // NearWallMask(grid): core/wall_agreement.hpp
+};
+
+// GenerateHypotheses (core/hypothesis_generator.hpp) on precomputed features: the same result.
+// Both feature sets must have been made with the same `options`.
+std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& a, const MapFeatures& b,
+                                               const HypothesisOptions& options);
+
+// SymmetricWallAgreement (core/wall_agreement.hpp) with the maps' near-wall masks.
+double SymmetricWallAgreement(const MapFeatures& a, const MapFeatures& b, const Pose2& T_ga_gb);
+
+}  // namespace fleetmerge

@@ -1,0 +1,91 @@
+#include "io/png_image.hpp"
+
+#include <spng.h>
+#include <zlib.h>
+
+#include <cstdlib>
+#include <memory>
+#include <opencv2/imgproc.hpp>
+#include <stdexcept>
+#include <vector>
+
+namespace fleetmerge {
+namespace {
+
+using Context = std::unique_ptr<spng_ctx, decltype(&spng_ctx_free)>;
+
+void Check(int error, const char* step) {
+  if (error != 0) throw std::runtime_error(std::string(step) + ": " + spng_strerror(error));
+}
+
+constexpr std::uint8_t kGrey = 0;
+constexpr std::uint8_t kRgb = 2;
+constexpr std::uint8_t kRgba = 6;
+
+}  // namespace
+
+cv::Mat DecodePng(const std::string& bytes) {
+  Context ctx(spng_ctx_new(0), spng_ctx_free);
+  if (!ctx) throw std::runtime_error("libspng could not create a decoder");
+  Check(spng_set_png_buffer(ctx.get(), bytes.data(), bytes.size()), "PNG");
+  spng_ihdr ihdr{};
+  Check(spng_get_ihdr(ctx.get(), &ihdr), "PNG header");
+  spng_trns trns{};
+  const bool has_trns = spng_get_trns(ctx.get(), &trns) == 0;
+  int format = SPNG_FMT_RGBA8;
+  int type = CV_8UC4;
+  if (ihdr.color_type == kGrey && ihdr.bit_depth == 8 && !has_trns) {
+    format = SPNG_FMT_G8;  // most maps: one byte per cell, no conversion
+    type = CV_8UC1;
+  } else if (ihdr.bit_depth == 16) {
+    format = SPNG_FMT_RGBA16;  // host-endian
+    type = CV_16UC4;
+  }
+  std::size_t size = 0;
+  Check(spng_decoded_image_size(ctx.get(), format, &size), "PNG");
+  cv::Mat image(static_cast<int>(ihdr.height), static_cast<int>(ihdr.width), type);
+  if (size != image.total() * image.elemSize()) {
+    throw std::runtime_error("PNG: unexpected decoded size");
+  }
+  Check(spng_decode_image(ctx.get(), image.data, size, format, SPNG_DECODE_TRNS), "PNG data");
+  return image;
+}
+
+std::string EncodePng(const cv::Mat& image) {
+  CV_Assert(image.depth() == CV_8U || image.depth() == CV_16U);
+  CV_Assert(image.channels() == 1 || image.channels() == 3 || image.channels() == 4);
+  cv::Mat rgb;  // PNG stores R, G, B; OpenCV images are B, G, R
+  if (image.channels() == 3) {
+    cv::cvtColor(image, rgb, cv::COLOR_BGR2RGB);
+  } else if (image.channels() == 4) {
+    cv::cvtColor(image, rgb, cv::COLOR_BGRA2RGBA);
+  } else {
+    rgb = image.isContinuous() ? image : image.clone();
+  }
+  if (!rgb.isContinuous()) rgb = rgb.clone();
+  Context ctx(spng_ctx_new(SPNG_CTX_ENCODER), spng_ctx_free);
+  if (!ctx) throw std::runtime_error("libspng could not create an encoder");
+  Check(spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1), "PNG encoder");
+  Check(spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_LEVEL, 1), "PNG encoder");
+  Check(spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_STRATEGY, Z_RLE), "PNG encoder");
+  Check(spng_set_option(ctx.get(), SPNG_FILTER_CHOICE, SPNG_FILTER_CHOICE_SUB), "PNG encoder");
+  spng_ihdr ihdr{};
+  ihdr.width = static_cast<std::uint32_t>(rgb.cols);
+  ihdr.height = static_cast<std::uint32_t>(rgb.rows);
+  ihdr.bit_depth = rgb.depth() == CV_16U ? 16 : 8;
+  ihdr.color_type = rgb.channels() == 1 ? kGrey : (rgb.channels() == 3 ? kRgb : kRgba);
+  Check(spng_set_ihdr(ctx.get(), &ihdr), "PNG header");
+  // SPNG_FMT_PNG: the buffer is in the PNG's own layout, 16-bit samples host-endian.
+  Check(spng_encode_image(ctx.get(), rgb.data, rgb.total() * rgb.elemSize(), SPNG_FMT_PNG,
+                          SPNG_ENCODE_FINALIZE),
+        "PNG encoding");
+  std::size_t length = 0;
+  int error = 0;
+  void* buffer = spng_get_png_buffer(ctx.get(), &length, &error);
+  Check(error, "PNG encoding");
+  std::string out(static_cast<const char*>(buffer), length);
+  std::free(buffer);
+  return out;
+}
+
+}  // namespace fleetmerge
