@@ -41,22 +41,31 @@ cv::Mat4b MapImage(const OccupancyGrid& grid) {
   return image;
 }
 
-// Centre of the box of the grid's known cells, in its map frame (the grid's centre when no cell
-// is known): where the pose graph draws the map's node.
-Eigen::Vector2d KnownCentre(const OccupancyGrid& grid) {
-  int i0 = std::numeric_limits<int>::max(), j0 = i0, i1 = -1, j1 = -1;
+// The box of the grid's known cells: columns [i0, i1) and rows [j0, j1) (rows from the bottom);
+// the whole grid when no cell is known.
+struct CellBox {
+  int i0 = 0, j0 = 0, i1 = 0, j1 = 0;
+};
+CellBox KnownBox(const OccupancyGrid& grid) {
+  CellBox box{std::numeric_limits<int>::max(), std::numeric_limits<int>::max(), -1, -1};
   for (int j = 0; j < grid.height(); ++j) {
     const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
     for (int i = 0; i < grid.width(); ++i) {
       if (row[i] == static_cast<std::uint8_t>(CellState::kUnknown)) continue;
-      i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
+      box.i0 = std::min(box.i0, i), box.i1 = std::max(box.i1, i + 1);
+      box.j0 = std::min(box.j0, j), box.j1 = std::max(box.j1, j + 1);
     }
   }
+  if (box.i1 < 0) box = {0, 0, grid.width(), grid.height()};
+  return box;
+}
+
+// Centre of the known cells' box in the map frame: where the pose graph draws the map's node.
+Eigen::Vector2d KnownCentre(const OccupancyGrid& grid) {
+  const CellBox box = KnownBox(grid);
   const double r = grid.geometry().resolution_m();
-  const Eigen::Vector2d centre_grid =
-      i1 < 0 ? Eigen::Vector2d(grid.width() * r / 2.0, grid.height() * r / 2.0)
-             : Eigen::Vector2d((i0 + i1 + 1) * r / 2.0, (j0 + j1 + 1) * r / 2.0);
-  return grid.geometry().T_map_grid() * centre_grid;
+  return grid.geometry().T_map_grid() *
+         Eigen::Vector2d((box.i0 + box.i1) * r / 2.0, (box.j0 + box.j1) * r / 2.0);
 }
 
 nlohmann::json GeometryJson(const OccupancyGrid& grid) {
@@ -87,6 +96,10 @@ nlohmann::json PageJson(const HtmlReport& page) {
                   {"width", map.input_width},
                   {"height", map.input_height},
                   {"resolution", map.input_resolution_m}};
+    // The known cells' box in image pixels [u0, v0, u1, v1] (rows from the top): the page fits
+    // its views to it rather than to the grid's unknown margins.
+    const CellBox box = KnownBox(*map.grid);
+    j["known_box"] = {box.i0, map.grid->height() - box.j1, box.i1, map.grid->height() - box.j0};
     j["known_cells"] =
         map.grid->width() * map.grid->height() - map.grid->Count(CellState::kUnknown);
     maps.push_back(j);
