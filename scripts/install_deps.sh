@@ -11,6 +11,9 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev
   clang libclang-rt-14-dev  # scripts/fuzz.sh: clang 14 and its libFuzzer/sanitizer runtimes
+  # tests/browser: report.html opened in headless Chromium, driven by a Node script (no npm
+  # package); a font so that the page's text renders in its screenshots.
+  chromium nodejs fonts-dejavu-core
 )
 
 missing=()
