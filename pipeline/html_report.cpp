@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
 #include "pipeline/html_report_template.hpp"
+#include "pipeline/parallel.hpp"
 #include "pipeline/preview.hpp"
 
 namespace fleetmerge {
@@ -240,14 +241,19 @@ std::string HtmlReportText(const HtmlReport& page) {
 }
 
 std::vector<std::string> WriteHtmlReport(const HtmlReport& page, const std::filesystem::path& dir,
-                                         const std::vector<std::filesystem::path>& protect) {
+                                         const std::vector<std::filesystem::path>& protect,
+                                         int threads) {
   std::vector<std::string> written;
   for (std::size_t m = 0; m < page.maps.size(); ++m) {
     if (!page.maps[m].grid)
       throw Error("internal: report.html map " + std::to_string(m) + " unset");
-    SaveImage(MapImage(*page.maps[m].grid), dir / MapImageName(m), protect);
     written.push_back(MapImageName(m));
   }
+  // On threads: each atomic write waits for its fsync (about 8 ms a file measured here), and the
+  // waits overlap.
+  ParallelFor(page.maps.size(), threads, [&](std::size_t m) {
+    SaveImage(MapImage(*page.maps[m].grid), dir / MapImageName(m), protect);
+  });
   WriteFileAtomically(dir / kHtmlReportName, HtmlReportText(page), protect);
   written.push_back(kHtmlReportName);
   return written;

@@ -64,10 +64,12 @@ HtmlReport HtmlReportOfJob(const Job& job, const std::vector<LoadedMap>& loaded,
 // ("omega_threshold", "hough.n_theta", ...): {key: {"value": v, "default": d}}.
 nlohmann::json ChangedOptions(const FleetOptions& options);
 
-// Writes report.html and the report_map_<m>.png images into `dir`, each atomically and never
-// over `protect`; returns the names written (for the result set's manifest).
+// Writes report.html and the report_map_<m>.png images (on `threads` threads, 0: all cores)
+// into `dir`, each atomically and never over `protect`; returns the names written (for the
+// result set's manifest).
 std::vector<std::string> WriteHtmlReport(const HtmlReport& page, const std::filesystem::path& dir,
-                                         const std::vector<std::filesystem::path>& protect);
+                                         const std::vector<std::filesystem::path>& protect,
+                                         int threads = 0);
 
 // The page's HTML text alone (report.html's bytes).
 std::string HtmlReportText(const HtmlReport& page);

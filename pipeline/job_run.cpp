@@ -139,7 +139,7 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     const auto html_start = Clock::now();
     const std::vector<std::string> html_files =
         WriteHtmlReport(HtmlReportOfJob(job, loaded, result, outcome.report, files),
-                        folder->staging_dir(), protect);
+                        folder->staging_dir(), protect, job.options.threads);
     written.insert(written.end(), html_files.begin(), html_files.end());
     outcome.report["timing_ms"]["report_html"] = MillisecondsSince(html_start);
     WriteFileAtomically(folder->staging_dir() / "report.json", outcome.report.dump(2) + "\n",
