@@ -14,6 +14,7 @@
 // also writes the README's screenshot, docs/images/report.png.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -167,18 +168,24 @@ Hits WallHits(const cv::Mat3b& shot, const json& view, const OccupancyGrid& grid
 
 Pose2 PoseOf(const json& j) { return Pose2(j.at("x"), j.at("y"), j.at("yaw")); }
 
-// The overlay of a clicked pair: both maps' walls where report.json's hypothesis puts them.
-void ExpectOverlayWhereTheHypothesisPutsIt(const json& click, const json& pair,
+// The hypothesis a click on a pair's row shows first: the edge's when accepted, else the best.
+int FirstShown(const json& pair) {
+  return pair.value("accepted", false) ? pair.value("edge_hypothesis", 0) : 0;
+}
+
+// The overlay of a clicked pair at hypothesis h: both maps' walls where report.json's
+// hypothesis puts them.
+void ExpectOverlayWhereTheHypothesisPutsIt(const json& click, const json& pair, int h,
                                            const fs::path& shots, const LoadedMap& a,
                                            const LoadedMap& b) {
-  SCOPED_TRACE(pair.at("a").get<std::string>() + " / " + pair.at("b").get<std::string>());
+  SCOPED_TRACE(pair.at("a").get<std::string>() + " / " + pair.at("b").get<std::string>() +
+               " hypothesis " + std::to_string(h + 1));
   EXPECT_EQ(click.at("state"), "drawn");
-  const int expected_h = pair.value("accepted", false) ? pair.value("edge_hypothesis", 0) : 0;
-  ASSERT_EQ(click.at("hypothesis").get<int>(), expected_h) << "the edge's hypothesis, else best";
+  ASSERT_EQ(click.at("hypothesis").get<int>(), h);
   EXPECT_EQ(click.at("hypotheses").size(), pair.at("hypotheses").size()) << click.dump();
   const cv::Mat3b shot = cv::imread((shots / click.at("screenshot").get<std::string>()).string());
   ASSERT_FALSE(shot.empty());
-  const Pose2 T_a_b = PoseOf(pair.at("hypotheses").at(expected_h));
+  const Pose2 T_a_b = PoseOf(pair.at("hypotheses").at(h));
   const Hits on_a = WallHits(shot, click.at("view"), a.grid, Pose2(), kWallOfA);
   const Hits on_b = WallHits(shot, click.at("view"), b.grid, T_a_b, kWallOfB);
   std::cout << "[ overlay  ] walls on their pixels: a " << on_a.hits << "/" << on_a.considered
@@ -433,9 +440,42 @@ TEST_F(ReportInBrowser, ClickingAPairDrawsItsOverlayWhereItsHypothesisPutsTheMap
     const auto stem = [](const std::string& name) {
       return "robotis_corridor_run" + name.substr(3);
     };
-    ExpectOverlayWhereTheHypothesisPutsIt(seen[k], PairOf(s.report, a, b), s.shots,
+    const json& pair = PairOf(s.report, a, b);
+    ExpectOverlayWhereTheHypothesisPutsIt(seen[k], pair, FirstShown(pair), s.shots,
                                           LoadMap(SharedMap(stem(a))), LoadMap(SharedMap(stem(b))));
   }
+}
+
+TEST_F(ReportInBrowser, HypothesisButtonsRedrawTheOverlayAtThatHypothesis) {
+  const Session& s = Shared();
+  const json& second = Result().at("second");
+  ASSERT_TRUE(second.is_object()) << "the second hypothesis was not clicked";
+  EXPECT_EQ(second.at("pair"), "run1|run4");
+  const json& pair = PairOf(s.report, "run1", "run4");
+  ASSERT_GE(pair.at("hypotheses").size(), 2u);
+  ExpectOverlayWhereTheHypothesisPutsIt(second, pair, 1, s.shots,
+                                        LoadMap(SharedMap("robotis_corridor_run1")),
+                                        LoadMap(SharedMap("robotis_corridor_run4")));
+}
+
+TEST_F(ReportInBrowser, PairTableSortsByOmega) {
+  const Session& s = Shared();
+  std::vector<std::pair<double, std::string>> by_omega;
+  std::vector<std::string> job_order;
+  for (const json& p : s.report.at("pairs")) {
+    const std::string key = p.at("a").get<std::string>() + "|" + p.at("b").get<std::string>();
+    by_omega.emplace_back(p.at("omega").get<double>(), key);
+    job_order.push_back(key);
+  }
+  std::stable_sort(by_omega.begin(), by_omega.end(),
+                   [](const auto& x, const auto& y) { return x.first > y.first; });
+  std::vector<std::string> descending;
+  for (const auto& [omega, key] : by_omega) descending.push_back(key);
+  const std::vector<std::string> ascending(descending.rbegin(), descending.rend());
+  const json& sorted = Result().at("sorted");
+  EXPECT_EQ(sorted.at("initial").get<std::vector<std::string>>(), job_order);
+  EXPECT_EQ(sorted.at("omega_first_click").get<std::vector<std::string>>(), descending);
+  EXPECT_EQ(sorted.at("omega_second_click").get<std::vector<std::string>>(), ascending);
 }
 
 // `pair --out` writes its own report.html; it opens and draws the best hypothesis's overlay.
@@ -464,7 +504,7 @@ TEST(PairReportInBrowser, PairOutPageOpensAndDrawsTheBestOverlay) {
   ExpectNoConsoleErrorAndNothingFetchedOutside(browser.result, dir / "out");
   EXPECT_EQ(browser.result.at("dom").at("input_maps"),
             json({"robotis_corridor_run1", "robotis_corridor_run3"}));
-  ExpectOverlayWhereTheHypothesisPutsIt(browser.result.at("clicks").at(0), pair, dir / "shots",
+  ExpectOverlayWhereTheHypothesisPutsIt(browser.result.at("clicks").at(0), pair, 0, dir / "shots",
                                         LoadMap(a), LoadMap(b));
 }
 

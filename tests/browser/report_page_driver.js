@@ -14,6 +14,8 @@
 //                                   device-pixel matrix (view), its canvas's box in CSS pixels
 //                                   of the page (rect) and a
 //                                   screenshot of it (device pixels, file in OUT_DIR)
+//   second: the same for the last clicked pair's second hypothesis (its button clicked)
+//   sorted: {initial, omega_first_click, omega_second_click}: the rows ("a|b") in table order
 //   page_screenshot, pairs_screenshot: files in OUT_DIR (the top of the page; the pair table
 //                                   with the last click's overlay)
 //   timing_ms: {load, total}
@@ -220,6 +222,38 @@ listeners.push((m) => {
     await screenshot(file, info.rect);
     clicks.push({ a, b, state, ...info, screenshot: file });
   }
+  // The last clicked pair's second hypothesis, from its button.
+  let second = null;
+  if (clicks.length && clicks[clicks.length - 1].hypotheses.length > 1) {
+    const last = clicks[clicks.length - 1];
+    await click('#overlay-hyps button[data-hypothesis="1"]');
+    await waitFor(`(() => { const v = document.getElementById('overlay-viewer');
+      return v.dataset.state === 'drawn' && v.dataset.hypothesis === '1'; })()`,
+      "the second hypothesis");
+    await evaluate("document.getElementById('overlay-viewer').scrollIntoView({block: 'center'})");
+    await new Promise((r) => setTimeout(r, 50));
+    second = await evaluate(`(() => { const v = document.getElementById('overlay-viewer');
+      const r = v.querySelector('canvas').getBoundingClientRect();
+      return { pair: v.dataset.pair, hypothesis: Number(v.dataset.hypothesis), state: v.dataset.state,
+        view: JSON.parse(v.dataset.view),
+        rect: {x: r.x + window.scrollX, y: r.y + window.scrollY, width: r.width, height: r.height},
+        hypotheses: [...document.querySelectorAll('#overlay-hyps button')].map(b => b.textContent)
+      }; })()`);
+    second.screenshot = await screenshot("overlay_" + last.a + "_" + last.b + "_h2.png", second.rect);
+    // Back to the first, so that the page is left showing the best hypothesis.
+    await click('#overlay-hyps button[data-hypothesis="0"]');
+    await waitFor(`document.getElementById('overlay-viewer').dataset.hypothesis === '0'`,
+      "the first hypothesis again");
+  }
+  // Sorting: the order of the rows after one and two clicks on the omega heading.
+  const order = () => evaluate(`[...document.querySelectorAll('#pair-table tbody tr')].map(
+    r => r.dataset.a + '|' + r.dataset.b)`);
+  const sorted = { initial: await order() };
+  await click('#pair-table th[data-key="omega"]');
+  sorted.omega_first_click = await order();
+  await click('#pair-table th[data-key="omega"]');
+  sorted.omega_second_click = await order();
+
   const pairsShot = await (async () => {
     await evaluate("document.getElementById('pairs').scrollIntoView()");
     await new Promise((r) => setTimeout(r, 100));
@@ -228,7 +262,8 @@ listeners.push((m) => {
 
   finished = true;
   clearTimeout(deadline);
-  process.stdout.write(JSON.stringify({ console: consoleMessages, requests, dom, clicks,
+  process.stdout.write(JSON.stringify({ console: consoleMessages, requests, dom, clicks, second,
+    sorted,
     page_screenshot: pageShot, pairs_screenshot: pairsShot, device_scale: DEVICE_SCALE,
     timing_ms: { load: loadMs, total: Date.now() - started } }) + "\n");
   cleanup();
