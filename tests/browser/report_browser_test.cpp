@@ -508,5 +508,41 @@ TEST(PairReportInBrowser, PairOutPageOpensAndDrawsTheBestOverlay) {
                                         LoadMap(a), LoadMap(b));
 }
 
+// An octree job's page adds each octree's floor plan with its floor height and z offset. The
+// octrees are the synthetic pair of `fleetmerge example --octree` (no real octree data ships).
+TEST(OctreeReportInBrowser, ShowsEachFloorPlanWithItsZOffset) {
+  const fs::path dir = testing::MakeTempDir("octree_report_browser");
+  ASSERT_EQ(testing::Fleetmerge("example --octree " + ShellQuote(dir / "case")).exit_code, 0);
+  const testing::CommandResult merge =
+      testing::Fleetmerge("merge --quiet " + ShellQuote(dir / "case" / "job.yaml"));
+  ASSERT_EQ(merge.exit_code, 0) << merge.both();
+  const fs::path out = dir / "case" / "merged";
+  const json report = json::parse(testing::ReadFile(out / "report.json"));
+  const std::optional<fs::path> chromium = Chromium();
+  if (!chromium || !FindProgram({"node"})) {
+    GTEST_SKIP() << "SKIPPED: no browser test: Chromium or node not found; "
+                    "scripts/install_deps.sh installs both";
+  }
+  const DriverRun browser = Drive(*chromium, out, dir / "shots", {});
+  ASSERT_TRUE(browser.error.empty()) << browser.error;
+  ExpectNoConsoleErrorAndNothingFetchedOutside(browser.result, out);
+  std::vector<std::string> octrees;
+  for (const json& m : report.at("maps")) {
+    if (m.contains("floor_z")) octrees.push_back(m.at("name"));
+  }
+  ASSERT_EQ(octrees.size(), 2u) << report.dump();
+  EXPECT_EQ(browser.result.at("dom").at("octrees").get<std::vector<std::string>>(), octrees);
+  const std::string text = browser.result.at("dom").at("octree_text");
+  for (const json& m : report.at("maps")) {
+    char line[160];
+    std::snprintf(line, sizeof line,
+                  "%s: floor at z %.3f m in its own frame; z offset in the merged frame %.3f m",
+                  m.at("name").get<std::string>().c_str(), m.at("floor_z").get<double>(),
+                  m.at("pose").at("z").get<double>());
+    EXPECT_NE(text.find(line), std::string::npos) << line << "\nnot in: " << text;
+  }
+  EXPECT_NE(text.find("merged_0.bt"), std::string::npos) << text;
+}
+
 }  // namespace
 }  // namespace fleetmerge

@@ -178,6 +178,15 @@ listeners.push((m) => {
   await waitFor("[...document.querySelectorAll('[data-role=best-candidate]')].every(" +
     "v => v.dataset.state === 'drawn')", "the unmerged maps' best candidates");
 
+  // Octree jobs: the floor plans, lazily drawn too.
+  await evaluate(`(async () => {
+    for (const c of document.querySelectorAll('[data-octree]')) {
+      c.scrollIntoView({block: "center"});
+      await new Promise(r => setTimeout(r, 30));
+    } })()`);
+  await waitFor("[...document.querySelectorAll('[data-octree]')].every(c => c.dataset.loaded)",
+    "the octrees' floor plans");
+
   const dom = await evaluate(`(() => {
     const text = (e) => e ? e.textContent.trim() : null;
     return {
@@ -195,6 +204,7 @@ listeners.push((m) => {
         best: c.querySelector('[data-role=best-candidate]') ?
           c.querySelector('[data-role=best-candidate]').dataset.pair : null})),
       octrees: [...document.querySelectorAll('[data-octree]')].map(c => c.dataset.octree),
+      octree_text: text(document.getElementById('octrees')),
       summary: text(document.getElementById('summary')),
       options: text(document.getElementById('options')),
       timing: text(document.getElementById('timing-table')),
