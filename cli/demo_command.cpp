@@ -103,6 +103,7 @@ void PrintOutputs(const Job& job, const fs::path& truth_yaml, const fs::path& ev
   }
   if (!any_merged) out << "  (no merged map: no two maps were merged)\n";
   out << "  report: " << report_json.string() << "\n"
+      << "  report page: " << (job.output_dir / "report.html").string() << "\n"
       << "  evaluation: " << evaluation_json.string() << "\n"
       << "  truth: " << truth_yaml.string() << "\n";
 }

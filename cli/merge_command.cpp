@@ -11,7 +11,7 @@
 
 #include "core/error.hpp"
 #include "io/job_file.hpp"
-include "pipeline/job_run.hpp"
+#include "pipeline/job_run.hpp"
 #include "pipeline/parallel.hpp"
 
     namespace fleetmerge {

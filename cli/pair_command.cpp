@@ -7,14 +7,67 @@
 
 #include "io/map_io.hpp"
 #include "pipeline/composite.hpp"
+#include "pipeline/html_report.hpp"
 #include "pipeline/preview.hpp"
 
 namespace fleetmerge {
 namespace {
 
 struct MergedFiles {
-  std::filesystem::path yaml, preview;
+  std::filesystem::path yaml, preview, page;
 };
+
+// The pair's report.html (pipeline/html_report.hpp) in report.json's names: the two maps, one
+// component merged at the best hypothesis, and the pair with all its hypotheses. `pair` applies
+// no acceptance test, so the pair is shown accepted at hypothesis 1 with a note saying so.
+HtmlReport PairPage(const PairCommand& command, const LoadedMap& a, const LoadedMap& b,
+                    const PairResult& result, const OccupancyGrid& merged) {
+  std::string name_a = command.a_yaml.stem().string(), name_b = command.b_yaml.stem().string();
+  if (name_a == name_b) name_a += " (a)", name_b += " (b)";
+  const Pose2 T_a_b = result.hypotheses.front().T_a_b;
+  const auto pose = [](const Pose2& T) {
+    return nlohmann::json{{"x", T.x_m()}, {"y", T.y_m()}, {"yaw", T.yaw_rad()}};
+  };
+  nlohmann::json hypotheses = nlohmann::json::array();
+  for (const auto& h : result.hypotheses) {
+    nlohmann::json j = pose(h.T_a_b);
+    j["omega"] = h.omega;
+    hypotheses.push_back(j);
+  }
+  HtmlReport page;
+  page.title = name_b + " on " + name_a;
+  page.report = {
+      {"job", "pair"},
+      {"resolution", result.resolution_m},
+      {"maps",
+       {{{"name", name_a},
+         {"source", command.a_yaml.string()},
+         {"component", 0},
+         {"pose", pose(Pose2())}},
+        {{"name", name_b},
+         {"source", command.b_yaml.string()},
+         {"component", 0},
+         {"pose", pose(T_a_b)}}}},
+      {"components",
+       {{{"id", 0},
+         {"maps", {name_a, name_b}},
+         {"reference", name_a},
+         {"merged_map", "merged.yaml"}}}},
+      {"pairs",
+       {{{"a", name_a},
+         {"b", name_b},
+         {"omega", result.hypotheses.front().omega},
+         {"accepted", true},
+         {"edge_hypothesis", 0},
+         {"hypotheses", hypotheses},
+         {"note", "fleetmerge pair merges at the best hypothesis without an acceptance test"}}}}};
+  for (const LoadedMap* map : {&a, &b}) {
+    page.maps.push_back({&map->grid, map == &a ? Pose2() : T_a_b, map->metadata.yaml_path.string(),
+                         map->grid.width(), map->grid.height(), map->metadata.resolution_m});
+  }
+  page.components.push_back({{0, 1}, &merged, "merged_preview.png"});
+  return page;
+}
 
 // Composites a (identity) and b (at the best hypothesis) and writes map + preview atomically,
 // never over an input file.
@@ -27,9 +80,10 @@ MergedFiles WriteMerged(const PairCommand& command, const LoadedMap& a, const Lo
   const OccupancyGrid merged = Composite(inputs, result.resolution_m);
   const std::vector<std::filesystem::path> protect = {a.metadata.yaml_path, a.metadata.image_path,
                                                       b.metadata.yaml_path, b.metadata.image_path};
-  MergedFiles files{dir / "merged.yaml", dir / "merged_preview.png"};
+  MergedFiles files{dir / "merged.yaml", dir / "merged_preview.png", dir / kHtmlReportName};
   SaveMap(merged, files.yaml, protect);
   SaveImage(ColourPreview(inputs, merged), files.preview, protect);
+  WriteHtmlReport(PairPage(command, a, b, result, merged), dir, protect);  // the page last
   return files;
 }
 
@@ -79,13 +133,16 @@ int RunPairCommand(const PairCommand& command, std::ostream& out) {
                                  {"omega", h.omega}});
     }
     j["resolution"] = result.resolution_m;
-    if (files) j["merged_map"] = files->yaml.string();
+    if (files) {
+      j["merged_map"] = files->yaml.string();
+      j["report_html"] = files->page.string();
+    }
     out << j.dump(2) << "\n";
   } else {
     PrintText(command, result, out);
     if (files) {
       out << "merged map: " << files->yaml.string() << "\npreview:    " << files->preview.string()
-          << "\n";
+          << "\nreport:     " << files->page.string() << "\n";
     }
   }
   return 0;

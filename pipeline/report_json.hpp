@@ -4,7 +4,8 @@
 //           frame; the component's reference map has the identity)
 //   components[]: id, maps (names), merged_map (file name; absent for an unmerged map)
 //   pairs[]: a, b, omega (best), accepted, hypotheses [{x, y, yaw, omega}] (b's frame in a's)
-//   timing_ms: load, pairs, refine, composite, total
+//   timing_ms: load, pairs, refine, composite, write, total; report_html (writing report.html,
+//              pipeline/html_report.hpp, after `total` was taken) when the set is written
 // Jobs with octrees add (pipeline/octree_maps.hpp, AddOctreesToReport): maps[].pose.z and
 // maps[].floor_z for octree maps, components[].merged_octree, timing_ms.octree_projection and
 // octree_write.

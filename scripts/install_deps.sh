@@ -12,6 +12,9 @@ packages=(
   nlohmann-json3-dev libcli11-dev
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
   clang libclang-rt-14-dev  # scripts/fuzz.sh: clang 14 and its libFuzzer/sanitizer runtimes
+  # tests/browser: report.html opened in headless Chromium, driven by a Node script (no npm
+  # package); a font so that the page's text renders in its screenshots.
+  chromium nodejs fonts-dejavu-core
 )
 
 missing=()

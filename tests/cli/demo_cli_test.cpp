@@ -58,14 +58,15 @@ void ExpectDemoOutputsValid(const testing::CommandResult& run, const fs::path& d
   ASSERT_EQ(run.exit_code, 0) << run.both();
   ASSERT_NE(run.out.find("\noutputs:\n"), std::string::npos) << run.out;
   const auto listed = ListedOutputs(run.out);
-  for (const char* label :
-       {"merged map YAML", "merged map PGM", "preview PNG", "report", "evaluation", "truth"}) {
+  for (const char* label : {"merged map YAML", "merged map PGM", "preview PNG", "report",
+                            "report page", "evaluation", "truth"}) {
     ASSERT_EQ(listed.count(label), 1u) << label << " not listed:\n" << run.out;
     EXPECT_TRUE(fs::is_regular_file(listed.at(label))) << listed.at(label);
   }
   EXPECT_EQ(listed.at("evaluation"), dir / "evaluation.json");
   EXPECT_EQ(listed.at("truth"), dir / "case" / "truth.yaml");
   EXPECT_EQ(listed.at("report"), dir / "case" / "merged" / "report.json");
+  EXPECT_EQ(listed.at("report page"), dir / "case" / "merged" / "report.html");
 
   const LoadedMap merged = LoadMap(listed.at("merged map YAML"));
   EXPECT_EQ(merged.metadata.image_path, listed.at("merged map PGM"));

@@ -308,8 +308,10 @@ TEST_F(MergeCliTest, MapOfAnotherBuildingStaysUnmerged) {
       EXPECT_FALSE(pair.at("accepted").get<bool>()) << pair;
     }
   }
-  const std::set<std::string> expected = {".fleetmerge-job", "report.json", "merged_0.yaml",
-                                          "merged_0.pgm", "merged_0_preview.png"};
+  const std::set<std::string> expected = {
+      ".fleetmerge-job",  "report.json",          "merged_0.yaml",
+      "merged_0.pgm",     "merged_0_preview.png", "report.html",
+      "report_map_0.png", "report_map_1.png",     "report_map_2.png"};
   EXPECT_EQ(FilesIn(out), expected) << "no merged map for the unmerged component";
 }
 

@@ -69,6 +69,7 @@ void ExpectCompleteSet(const fs::path& out, const std::string& when) {
   ResultManifest manifest;
   ASSERT_NO_THROW(manifest = ReadResultManifest(out));
   std::set<std::string> expected(manifest.files.begin(), manifest.files.end());
+  EXPECT_EQ(expected.count("report.html"), 1u) << "the page is part of every set";
   expected.insert(kManifestName);
   std::set<std::string> present;
   for (const auto& e : fs::directory_iterator(out)) present.insert(e.path().filename().string());
