@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "io/job_file.hpp"
+#include "io/map_inputs.hpp"
 #include "pipeline/job_run.hpp"
 
 namespace fleetmerge {
@@ -52,21 +53,9 @@ Job JobFromMapList(const MergeCommand& command) {
   job.name = "merge";
   job.output_dir = *command.out_dir;
   job.options = command.options;
-  for (const auto& path : command.inputs) {
-    for (const JobMap& earlier : job.maps) {
-      std::error_code ec;
-      if (std::filesystem::equivalent(earlier.path, path, ec)) {
-        throw Error(path.string() + " is listed twice (the same file as " + earlier.path.string() +
-                    ")");
-      }
-      if (earlier.name == path.stem().string()) {
-        throw Error(path.string() + " and " + earlier.path.string() + " would both be named '" +
-                    earlier.name + "' (maps are named by file stem with --out; give them " +
-                    "distinct file names or use a job file with 'name' keys)");
-      }
-    }
-    job.maps.push_back({path.stem().string(), path, path});
-  }
+  std::vector<MapInput> inputs;
+  for (const auto& path : command.inputs) inputs.push_back({path, path, "", command.topics});
+  job.maps = ExpandMapInputs(inputs);
   job.reference = command.reference.value_or(job.maps.empty() ? "" : job.maps.front().name);
   bool found = false;
   for (const auto& m : job.maps) found = found || m.name == job.reference;

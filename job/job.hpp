@@ -11,9 +11,10 @@
 namespace fleetmerge {
 
 struct JobMap {
-  std::string name;              // given in the job, else the YAML's file name without extension
+  std::string name;              // given in the job, else from the path (io/map_names.hpp)
   std::filesystem::path source;  // as written in the job file (reported in report.json)
   std::filesystem::path path;    // resolved: relative paths are relative to the job file's folder
+  std::string topic;             // a bag's map: its nav_msgs/OccupancyGrid topic; else empty
 };
 
 struct Job {

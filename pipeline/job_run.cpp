@@ -7,7 +7,9 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/map_inputs.hpp"
 #include "io/octree_io.hpp"
+#include "io/resampled_size.hpp"
 #include "io/result_folder.hpp"
 #include "pipeline/parallel.hpp"
 #include "pipeline/preview.hpp"
@@ -57,7 +59,7 @@ std::vector<LoadedMap> LoadJobMaps(const Job& job, int threads, std::vector<JobO
     try {
       const auto& path = job.maps[m].path;
       loaded[m] = IsOctreePath(path) ? LoadOctreeMap(path, job.options.octree, octrees[m])
-                                     : LoadMap(path, job.options.max_map_cells);
+                                     : LoadJobMap(job.maps[m], job.options.max_map_cells);
     } catch (...) {  // kept per map so that the first in job order is the one reported
       failures[m] = std::current_exception();
     }
@@ -103,6 +105,11 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     }
     if (job.maps[m].name == job.reference) reference = static_cast<int>(m);
   }
+  {  // a map that would not fit once resampled fails the job now, naming its file
+    std::vector<const LoadedMap*> maps;
+    for (const auto& l : loaded) maps.push_back(&l);
+    CheckResampledSizes(maps, job.options.resolution_m, job.options.max_map_cells);
+  }
   // Checked before the work (a folder that may not be replaced fails the job now); every file
   // then goes to a staging folder, swapped in as a whole (io/result_folder.hpp).
   std::optional<ResultFolder> folder;
@@ -132,6 +139,16 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
   timing.total_ms = load_ms + MillisecondsSince(start);
   outcome.report = MakeReport(job, result, files, timing);
   AddOctreesToReport(outcome.report, job_octrees, octree_outputs);
+  for (std::size_t m = 0; m < loaded.size(); ++m) {
+    if (!loaded[m].bag) continue;
+    const BagMapInfo& bag = *loaded[m].bag;
+    outcome.report["maps"][m]["bag"] = {{"path", bag.bag.generic_string()},
+                                        {"topic", bag.topic},
+                                        {"type", bag.type},
+                                        {"frame_id", bag.frame_id},
+                                        {"log_time_ns", bag.log_time_ns},
+                                        {"stamp_ns", bag.stamp_ns}};
+  }
   if (folder) {
     WriteFileAtomically(folder->staging_dir() / "report.json", outcome.report.dump(2) + "\n",
                         protect);
