@@ -249,7 +249,7 @@ std::vector<JobMap> ReadMaps(const YamlField& field, const fs::path& folder,
     if (!m.map.name.empty()) {
       taken.push_back(m.map.name);
     } else {
-      unnamed.push_back({m.map.path, maps_per_bag[m.canonical] > 1 ? m.map.topic : ""});
+      unnamed.push_back({NamingPath(m.map.path), maps_per_bag[m.canonical] > 1 ? m.map.topic : ""});
     }
   }
   std::vector<std::string> names;

@@ -17,6 +17,19 @@ fs::path Canonical(const fs::path& path) {
 
 }  // namespace
 
+fs::path NamingPath(const fs::path& path) {
+  fs::path p = path.lexically_normal();
+  if (!p.has_filename()) p = p.parent_path();
+  std::error_code ec;
+  if ((p.extension() == ".db3" || p.extension() == ".mcap") &&
+      fs::is_regular_file(p.parent_path() / "metadata.yaml", ec)) {
+    p = p.parent_path();
+    if (p.empty()) p = fs::current_path();
+  }
+  if (p.filename() == "." || p.empty()) p = fs::absolute(p).lexically_normal().parent_path();
+  return p;
+}
+
 std::vector<JobMap> ExpandMapInputs(const std::vector<MapInput>& inputs) {
   std::vector<JobMap> maps;
   std::vector<MapNameInput> unnamed;
@@ -41,7 +54,7 @@ std::vector<JobMap> ExpandMapInputs(const std::vector<MapInput>& inputs) {
       canonical.push_back(c);
       maps.push_back({input.name, input.source, input.path, topic});
       if (input.name.empty()) {
-        unnamed.push_back({input.path, topics.size() > 1 ? topic : ""});
+        unnamed.push_back({NamingPath(input.path), topics.size() > 1 ? topic : ""});
         unnamed_index.push_back(maps.size() - 1);
       } else {
         taken.push_back(input.name);

@@ -25,6 +25,10 @@ struct MapInput {
 std::vector<JobMap> ExpandMapInputs(const std::vector<MapInput>& inputs);
 
 // Loads one job map: its bag topic (io/bag_maps.hpp), else a map_server YAML.
+// The path a map is named by (io/map_names.hpp): its own, but a ROS 2 bag's storage file with
+// metadata.yaml beside it is named by its bag's folder, and "robot1/" by "robot1".
+std::filesystem::path NamingPath(const std::filesystem::path& path);
+
 LoadedMap LoadJobMap(const JobMap& map, std::int64_t max_cells = kDefaultMaxMapCells);
 
 }  // namespace fleetmerge
