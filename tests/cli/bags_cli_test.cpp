@@ -274,7 +274,7 @@ TEST(Ros2McapFleet, CheckedInBagsMergeAndMatchTheSimulatedMaps) {
   }
   const auto merged = Fleetmerge("merge --quiet --out " + ShellQuote(dir / "out") + bags);
   ASSERT_EQ(merged.exit_code, 0) << merged.both();
-  ExpectAllPairsCoarse(dir / "out" / "report.json", sim / "truth.yaml");
+  ExpectAllPairsCoarse(dir / "out" / "report.json", mcap / "truth.yaml");
 }
 
 }  // namespace
