@@ -48,6 +48,14 @@ int main(int argc, char** argv) {
                         "(repeatable; default every map topic)");
   merge_app->add_option("--out", merge.out_dir, "treat the inputs as maps of one job, output here");
   merge_app->add_option("--reference", merge.reference, "with --out: the reference map's name");
+  merge_app
+      ->add_option("--tf-parent", merge.tf_parent_frame,
+                   "with --out: parent frame of the transforms written (transforms.launch*)")
+      ->capture_default_str();
+  merge_app
+      ->add_option("--tf-child", merge.tf_child_frame,
+                   "with --out: child frame of each map's transform; {name} is the map's name")
+      ->capture_default_str();
   merge_app->add_option("--threads", merge.options.threads, "threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   merge_app

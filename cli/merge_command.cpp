@@ -56,6 +56,8 @@ Job JobFromMapList(const MergeCommand& command) {
   std::vector<MapInput> inputs;
   for (const auto& path : command.inputs) inputs.push_back({path, path, "", command.topics});
   job.maps = ExpandMapInputs(inputs);
+  job.tf_parent_frame = command.tf_parent_frame;
+  job.tf_child_frame = command.tf_child_frame;
   job.reference = command.reference.value_or(job.maps.empty() ? "" : job.maps.front().name);
   bool found = false;
   for (const auto& m : job.maps) found = found || m.name == job.reference;

@@ -30,7 +30,7 @@ namespace {
 const std::vector<std::string> kJobKeys = {
     "name", "maps", "output", "reference", "resolution", "threads", "hypotheses_per_pair",
     "omega_threshold", "min_overlap_cells", "min_wall_agreement", "refine", "seed", "hough", "translation",
-    "pose_graph", "fusion", "octree", "max_map_cells"};
+    "pose_graph", "fusion", "octree", "max_map_cells", "tf_parent", "tf_child"};
 // clang-format on
 
 SamplingOptions ReadSampling(const YamlField& field, const YamlErrors& errors) {
@@ -312,6 +312,10 @@ ListedJob ReadJob(const YamlField& field, int number, const fs::path& job_file,
                 "'" + result.output_dir.string() + "' exists and is not a folder");
   }
   result.reference = ReadReference(job, result.maps, errors);
+  if (auto f = job.Find("tf_parent")) result.tf_parent_frame = ReadString(*f, "a frame id", errors);
+  if (auto f = job.Find("tf_child")) {
+    result.tf_child_frame = ReadString(*f, "a frame id pattern with {name}", errors);
+  }
   ReadOptions(job, result.options, errors);
   return listed;
 }

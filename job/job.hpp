@@ -23,6 +23,9 @@ struct Job {
   std::vector<JobMap> maps;
   std::filesystem::path output_dir;  // resolved like map paths
   std::string reference;             // a map name; default the first map
+  // Frames of the transforms written beside report.json (pipeline/launch_files.hpp).
+  std::string tf_parent_frame = "map";
+  std::string tf_child_frame = "{name}/map";  // {name}: the map's name
   FleetOptions options;
 };
 

@@ -11,6 +11,7 @@
 #include "io/octree_io.hpp"
 #include "io/resampled_size.hpp"
 #include "io/result_folder.hpp"
+#include "pipeline/launch_files.hpp"
 #include "pipeline/parallel.hpp"
 #include "pipeline/preview.hpp"
 #include "pipeline/report_json.hpp"
@@ -110,6 +111,7 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     for (const auto& l : loaded) maps.push_back(&l);
     CheckResampledSizes(maps, job.options.resolution_m, job.options.max_map_cells);
   }
+  CheckTransformFrames(job);
   // Checked before the work (a folder that may not be replaced fails the job now); every file
   // then goes to a staging folder, swapped in as a whole (io/result_folder.hpp).
   std::optional<ResultFolder> folder;
@@ -139,7 +141,11 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
   timing.total_ms = load_ms + MillisecondsSince(start);
   outcome.report = MakeReport(job, result, files, timing);
   AddOctreesToReport(outcome.report, job_octrees, octree_outputs);
+  for (std::size_t c = 0; c < result.components.size(); ++c) {
+    outcome.report["components"][c]["frame"] = ParentFrame(job, static_cast<int>(c));
+  }
   for (std::size_t m = 0; m < loaded.size(); ++m) {
+    outcome.report["maps"][m]["frame"] = ChildFrame(job, job.maps[m].name);
     if (!loaded[m].bag) continue;
     const BagMapInfo& bag = *loaded[m].bag;
     outcome.report["maps"][m]["bag"] = {{"path", bag.bag.generic_string()},
@@ -153,6 +159,11 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     WriteFileAtomically(folder->staging_dir() / "report.json", outcome.report.dump(2) + "\n",
                         protect);
     written.push_back("report.json");
+    WriteFileAtomically(folder->staging_dir() / kRos2LaunchFile, Ros2TransformsLaunch(job, result),
+                        protect);
+    WriteFileAtomically(folder->staging_dir() / kRos1LaunchFile, Ros1TransformsLaunch(job, result),
+                        protect);
+    written.insert(written.end(), {kRos2LaunchFile, kRos1LaunchFile});
     folder->Publish(written);
   }
   return outcome;

@@ -15,5 +15,4 @@ rm -rf mcap_sim_seed3
 node make_mcap.mjs --map "$tmp/sim/robot1.yaml" --out mcap_sim_seed3/robot1 --compression zstd --messages 3
 node make_mcap.mjs --map "$tmp/sim/robot2.yaml" --out mcap_sim_seed3/robot2 --compression lz4 --messages 3
 node make_mcap.mjs --map "$tmp/sim/robot3.yaml" --out mcap_sim_seed3/robot3 --compression none --messages 2
-cp "$tmp/sim/truth.yaml" mcap_sim_seed3/truth.yaml
 ls -l mcap_sim_seed3/*
