@@ -328,5 +328,34 @@ TEST(Ros2McapFleet, CheckedInBagsMergeAndMatchTheSimulatedMaps) {
   ExpectAllPairsCoarse(dir / "out" / "report.json", sim / "truth.yaml");
 }
 
+// --- Map files: a resolution whose resampled grid cannot exist ------------------------------
+
+TEST(ResampledSize, TinyResolutionBesideANormalMapIsRefusedNamingTheFiles) {
+  const fs::path dir = testing::MakeTempDir("resolution_1e-300");
+  const std::string pgm = std::string("P5\n4 3\n255\n") + std::string(12, '\xfe');
+  const std::string yaml =
+      "negate: 0\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.196\n";
+  testing::WriteFile(dir / "a.pgm", pgm);
+  testing::WriteFile(dir / "b.pgm", pgm);
+  testing::WriteFile(dir / "tiny.yaml", "image: a.pgm\nresolution: 1e-300\n" + yaml);
+  testing::WriteFile(dir / "normal.yaml", "image: b.pgm\nresolution: 0.05\n" + yaml);
+  for (const std::string command :
+       {"pair " + ShellQuote(dir / "tiny.yaml") + " " + ShellQuote(dir / "normal.yaml") +
+            " --out " + ShellQuote(dir / "pair_out"),
+        "merge --quiet --out " + ShellQuote(dir / "merge_out") + " " +
+            ShellQuote(dir / "tiny.yaml") + " " + ShellQuote(dir / "normal.yaml")}) {
+    const auto run = Fleetmerge(command);
+    EXPECT_EQ(run.exit_code, 1) << command << "\n" << run.both();
+    EXPECT_NE(run.err.find("normal.yaml: its 4 x 3 cells of 0.05 m would become"),
+              std::string::npos)
+        << run.err;
+    EXPECT_NE(run.err.find("that of " + (dir / "tiny.yaml").string()), std::string::npos)
+        << run.err;
+    EXPECT_EQ(run.err.find("grid size must be"), std::string::npos) << run.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "pair_out"));
+  EXPECT_FALSE(fs::exists(dir / "merge_out"));
+}
+
 }  // namespace
 }  // namespace fleetmerge
