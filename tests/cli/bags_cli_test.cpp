@@ -339,7 +339,7 @@ TEST(ResampledSize, TinyResolutionBesideANormalMapIsRefusedNamingTheFiles) {
   testing::WriteFile(dir / "b.pgm", pgm);
   testing::WriteFile(dir / "tiny.yaml", "image: a.pgm\nresolution: 1e-300\n" + yaml);
   testing::WriteFile(dir / "normal.yaml", "image: b.pgm\nresolution: 0.05\n" + yaml);
-  for (const std::string command :
+  for (const std::string& command :
        {"pair " + ShellQuote(dir / "tiny.yaml") + " " + ShellQuote(dir / "normal.yaml") +
             " --out " + ShellQuote(dir / "pair_out"),
         "merge --quiet --out " + ShellQuote(dir / "merge_out") + " " +

@@ -429,7 +429,7 @@ def add_bag_cases():
             p = os.path.join(d, "x.db3")
             open(p, "wb").write(files["robot/robot_0.db3"])
             db = sqlite3.connect(p)
-            db.execute("UPDATE messages SET data = substr(data, 1, 100) WHERE topic_id = "
+            db.execute("UPDATE messages SET data = substr(data, 1, 300) WHERE topic_id = "
                        "(SELECT id FROM topics WHERE name = '/map')")
             db.commit()
             db.close()
