@@ -292,8 +292,9 @@ TEST_F(MergeCliTest, MapOfAnotherBuildingStaysUnmerged) {
       EXPECT_FALSE(pair.at("accepted").get<bool>()) << pair;
     }
   }
-  const std::set<std::string> expected = {".fleetmerge-job", "report.json", "merged_0.yaml",
-                                          "merged_0.pgm", "merged_0_preview.png"};
+  const std::set<std::string> expected = {
+      ".fleetmerge-job",      "report.json",       "merged_0.yaml",         "merged_0.pgm",
+      "merged_0_preview.png", "transforms.launch", "transforms.launch.yaml"};
   EXPECT_EQ(FilesIn(out), expected) << "no merged map for the unmerged component";
 }
 
