@@ -88,4 +88,37 @@ std::string DecompressZstd(std::string_view data, std::size_t size, const std::s
   return out;
 }
 
+std::string DecompressZstdFrame(std::string_view data, const std::string& context) {
+  const unsigned long long announced = ZSTD_getFrameContentSize(data.data(), data.size());
+  if (announced == ZSTD_CONTENTSIZE_ERROR) throw Error(context + ": not zstd data");
+  if (announced != ZSTD_CONTENTSIZE_UNKNOWN) {
+    return DecompressZstd(data, static_cast<std::size_t>(announced), context);
+  }
+  // A streamed frame (no size in its header): decompress in steps, up to kMaxChunkBytes.
+  const std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> dctx(ZSTD_createDCtx(),
+                                                                  &ZSTD_freeDCtx);
+  std::string out;
+  ZSTD_inBuffer in{data.data(), data.size(), 0};
+  std::size_t rc = 1;
+  while (rc != 0) {
+    if (out.size() >= kMaxChunkBytes) {
+      throw Error(context + ": zstd data decompresses to more than " +
+                  std::to_string(kMaxChunkBytes) + " bytes");
+    }
+    const std::size_t at = out.size();
+    out.resize(at + (std::size_t{1} << 16));
+    ZSTD_outBuffer o{out.data() + at, out.size() - at, 0};
+    const std::size_t before = in.pos;
+    rc = ZSTD_decompressStream(dctx.get(), &o, &in);
+    if (ZSTD_isError(rc)) {
+      throw Error(context + ": corrupt zstd data (" + ZSTD_getErrorName(rc) + ")");
+    }
+    out.resize(at + o.pos);
+    if (rc != 0 && in.pos == before && o.pos == 0) {
+      throw Error(context + ": zstd data ends inside its frame (truncated)");
+    }
+  }
+  return out;
+}
+
 }  // namespace fleetmerge

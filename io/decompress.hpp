@@ -16,5 +16,7 @@ inline constexpr std::size_t kMaxChunkBytes = std::size_t{1} << 30;
 std::string DecompressBz2(std::string_view data, std::size_t size, const std::string& context);
 std::string DecompressLz4Frame(std::string_view data, std::size_t size, const std::string& context);
 std::string DecompressZstd(std::string_view data, std::size_t size, const std::string& context);
+// One zstd frame whose size its header may or may not give (rosbag2's MESSAGE compression).
+std::string DecompressZstdFrame(std::string_view data, const std::string& context);
 
 }  // namespace fleetmerge

@@ -1,7 +1,5 @@
 #include "io/ros2_bag.hpp"
 
-#include <zstd.h>
-
 #include <map>
 
 #include "core/error.hpp"
@@ -140,11 +138,7 @@ std::optional<BagMessage> Ros2BagLastMessage(const Ros2Bag& bag, const std::stri
   }
   if (last && bag.message_zstd) {
     const std::string context = last_file.string() + ": message on " + topic;
-    const unsigned long long size = ZSTD_getFrameContentSize(last->data.data(), last->data.size());
-    if (size == ZSTD_CONTENTSIZE_ERROR || size == ZSTD_CONTENTSIZE_UNKNOWN) {
-      throw Error(context + ": not a zstd frame with its size (compression_mode MESSAGE)");
-    }
-    last->data = DecompressZstd(last->data, static_cast<std::size_t>(size), context);
+    last->data = DecompressZstdFrame(last->data, context);
   }
   return last;
 }

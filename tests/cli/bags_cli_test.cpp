@@ -307,6 +307,53 @@ TEST_P(Ros2Db3Fleet, SimulatedFleetMergesFromBagFolders) {
 
 INSTANTIATE_TEST_SUITE_P(Distros, Ros2Db3Fleet, ::testing::Values("humble", "jazzy"));
 
+TEST(Ros2Db3, MessageCompressionZstdRoundTrip) {
+  const fs::path dir = testing::MakeTempDir("ros2_db3_zstd");
+  const fs::path sim = SimulateFleet(dir);
+  MakeBag("db3 --distro jazzy --message-zstd --map " + ShellQuote(sim / "robot3.yaml") + " --out " +
+          ShellQuote(dir / "robot3"));
+  const auto run = Fleetmerge("extract " + ShellQuote(dir / "robot3") + " --out " +
+                              ShellQuote(dir / "extracted"));
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  ExpectSameMap(dir / "extracted" / "robot3.yaml", sim / "robot3.yaml");
+}
+
+// --- Job files --------------------------------------------------------------------------------
+
+TEST(BagJobFiles, EntriesNameBagsAndTheirTopics) {
+  const fs::path dir = testing::MakeTempDir("bag_job_file");
+  const fs::path sim = SimulateFleet(dir);
+  MakeBag("ros1 --out " + ShellQuote(dir / "fleet.bag") + " --map " +
+          ShellQuote(sim / "robot1.yaml") + " --topic /robot1/map --map " +
+          ShellQuote(sim / "robot2.yaml") + " --topic /robot2/map");
+  MakeBag("db3 --map " + ShellQuote(sim / "robot3.yaml") + " --out " + ShellQuote(dir / "r3"));
+  testing::WriteFile(dir / "job.yaml",
+                     "maps:\n  - {path: fleet.bag, topic: robot2/map, name: second}\n"
+                     "  - {path: fleet.bag, topic: /robot1/map}\n  - r3\noutput: out\n"
+                     "reference: second\ntf_parent: world\ntf_child: '{name}_map'\n");
+  const auto run = Fleetmerge("merge --quiet " + ShellQuote(dir / "job.yaml"));
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  const json report = ReadJson(dir / "out" / "report.json");
+  ASSERT_EQ(report["maps"].size(), 3u);
+  EXPECT_EQ(report["maps"][0]["name"], "second");
+  EXPECT_EQ(report["maps"][0]["bag"]["topic"], "/robot2/map");
+  EXPECT_EQ(report["maps"][1]["name"], "fleet_robot1_map");  // the bag gives the job two maps
+  EXPECT_EQ(report["maps"][2]["name"], "r3");
+  EXPECT_EQ(report["maps"][2]["frame"], "r3_map");
+  const std::string launch = testing::ReadFile(dir / "out" / "transforms.launch.yaml");
+  EXPECT_NE(launch.find("--frame-id world --child-frame-id second_map"), std::string::npos)
+      << launch;
+  // A name for a bag of several map topics is refused, naming the entry's line.
+  testing::WriteFile(dir / "bad.yaml",
+                     "maps:\n  - {path: fleet.bag, name: x}\n  - r3\n"
+                     "output: out2\n");
+  const auto bad = Fleetmerge("merge --quiet " + ShellQuote(dir / "bad.yaml"));
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("line 2"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("is given to a bag with 2 map topics"), std::string::npos) << bad.err;
+  EXPECT_FALSE(fs::exists(dir / "out2"));
+}
+
 // Checked-in MCAP bags (make_mcap.mjs, npm's @mcap/core): the fleet of
 // `fleetmerge simulate --robots 3 --seed 3`, robot1 zstd chunks, robot2 lz4, robot3 uncompressed.
 TEST(Ros2McapFleet, CheckedInBagsMergeAndMatchTheSimulatedMaps) {

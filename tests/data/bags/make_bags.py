@@ -8,7 +8,8 @@ than fleetmerge's readers, for the bag tests (tests/cli/bags_cli_test.cpp) and b
   db3    ROS 2 bag folder in rosbag2's SQLite 3 layout, by Python's sqlite3 and a CDR encoder
          written here from the CDR spec: --distro humble (metadata version 5, QoS as a YAML
          string, schema 3) or jazzy (version 9, QoS as a list, schema 4 with message_definitions
-         and type hashes).
+         and type hashes); --message-zstd compresses each message (compression mode MESSAGE)
+         with the zstd tool.
 
 Every map becomes a GMapping-like topic: --messages N messages, the first N-1 growing crops of
 the map (GMapping's map grows as the robot explores, its origin moving with it), the last the
@@ -22,6 +23,7 @@ import math
 import os
 import sqlite3
 import struct
+import subprocess
 import sys
 
 NS = 1_000_000_000
@@ -245,6 +247,9 @@ def write_db3(args, maps):
     for t, topic, grid in timeline(args, maps):
         data = cdr_string("robot alive") if grid is None else cdr_occupancy_grid(
             t, args.frame_id, grid)
+        if args.message_zstd:  # rosbag2 --compression-mode message: each blob a zstd frame
+            data = subprocess.run(["zstd", "-q", "-c"], input=data, check=True,
+                                  stdout=subprocess.PIPE).stdout
         db.execute("INSERT INTO messages VALUES(NULL,?,?,?)", (topics[topic], t, data))
         counts[topic] += 1
         times.append(t)
@@ -268,7 +273,9 @@ def write_metadata(args, db_name, types, counts, times, jazzy):
         else:
             lines += ['        offered_qos_profiles: "%s"' % QOS_HUMBLE.replace("\n", "\\n")]
         lines += ["      message_count: %d" % counts[topic]]
-    lines += ['  compression_format: ""', '  compression_mode: ""', "  relative_file_paths:",
+    compression = ["  compression_format: zstd", "  compression_mode: MESSAGE"] \
+        if args.message_zstd else ['  compression_format: ""', '  compression_mode: ""']
+    lines += compression + ["  relative_file_paths:",
               "    - %s" % db_name, "  files:", "    - path: %s" % db_name, "      starting_time:",
               "        nanoseconds_since_epoch: %d" % min(times), "      duration:",
               "        nanoseconds: %d" % (max(times) - min(times)),
@@ -290,6 +297,8 @@ def main():
     parser.add_argument("--unindexed", action="store_true")
     parser.add_argument("--distro", choices=["humble", "jazzy"], default="humble")
     parser.add_argument("--messages", type=int, default=3)
+    parser.add_argument("--message-zstd", action="store_true",
+                        help="db3: zstd per message (rosbag2 compression mode MESSAGE)")
     parser.add_argument("--frame-id", default="map")
     args = parser.parse_args()
     topics = args.topic or ["/map"]
