@@ -1,5 +1,6 @@
 #include "io/occupancy_grid_msg.hpp"
 
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -48,6 +49,7 @@ double ShortestDecimal(float value) {
     char text[32];
     std::snprintf(text, sizeof(text), "%.*g", digits, static_cast<double>(value));
     const double parsed = std::strtod(text, nullptr);
+    if (!(std::fabs(parsed) <= FLT_MAX)) continue;  // the float conversion would overflow
     if (static_cast<float>(parsed) == value) return parsed;
   }
   return value;
