@@ -28,8 +28,11 @@ MergedFiles WriteMerged(const PairCommand& command, const LoadedMap& a, const Lo
   const std::vector<CompositeInput> inputs = {{&a.grid, Pose2()},
                                               {&b.grid, result.hypotheses.front().T_a_b}};
   const OccupancyGrid merged = Composite(inputs, result.resolution_m);
-  const std::vector<std::filesystem::path> protect = {a.metadata.yaml_path, a.metadata.image_path,
-                                                      b.metadata.yaml_path, b.metadata.image_path};
+  std::vector<std::filesystem::path> protect;  // the inputs (a bag's map has no image path)
+  for (const auto& p :
+       {a.metadata.yaml_path, a.metadata.image_path, b.metadata.yaml_path, b.metadata.image_path}) {
+    if (!p.empty()) protect.push_back(p);
+  }
   MergedFiles files{dir / "merged.yaml", dir / "merged_preview.png"};
   SaveMap(merged, files.yaml, protect);
   SaveImage(ColourPreview(inputs, merged), files.preview, protect);
