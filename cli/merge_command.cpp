@@ -85,6 +85,9 @@ int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream
   if (command.out_dir) {
     jobs.push_back(JobFromMapList(command));
   } else {
+    if (!command.topics.empty()) {
+      throw Error("--topic is for maps given with --out; in a job file give a map entry's 'topic'");
+    }
     // Every job file is validated before any job runs.
     for (const auto& file : command.inputs) {
       for (Job& job : LoadJobFile(file)) jobs.push_back(std::move(job));
