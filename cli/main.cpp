@@ -8,6 +8,7 @@
 #include "cli/demo_command.hpp"
 #include "cli/eval_command.hpp"
 #include "cli/example_command.hpp"
+#include "cli/extract_command.hpp"
 #include "cli/merge_command.hpp"
 #include "cli/pair_command.hpp"
 #include "cli/simulate_command.hpp"
@@ -23,8 +24,12 @@ int main(int argc, char** argv) {
   PairCommand pair;
   CLI::App* pair_app = app.add_subcommand(
       "pair", "Rank the transformations that overlay map B on map A (pose of B's frame in A's)");
-  pair_app->add_option("a", pair.a_yaml, "map A (map_server YAML)")->required();
-  pair_app->add_option("b", pair.b_yaml, "map B (map_server YAML)")->required();
+  pair_app->add_option("a", pair.a_yaml, "map A (map_server YAML, or a ROS 1/ROS 2 bag)")
+      ->required();
+  pair_app->add_option("b", pair.b_yaml, "map B (map_server YAML, or a ROS 1/ROS 2 bag)")
+      ->required();
+  pair_app->add_option("--topic", pair.topics,
+                       "bags: the nav_msgs/OccupancyGrid topic to read (repeatable)");
   pair_app->add_option("-n", pair.hypotheses, "number of hypotheses")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
@@ -36,10 +41,21 @@ int main(int argc, char** argv) {
   MergeCommand merge;
   CLI::App* merge_app =
       app.add_subcommand("merge", "Merge the maps of a fleet: job files, or maps with --out DIR");
-  merge_app->add_option("inputs", merge.inputs, "job files (YAML), or map YAMLs with --out")
+  merge_app->add_option("inputs", merge.inputs, "job files (YAML), or maps (YAML, bags) with --out")
       ->required();
+  merge_app->add_option("--topic", merge.topics,
+                        "with --out: read only these nav_msgs/OccupancyGrid topics from bags "
+                        "(repeatable; default every map topic)");
   merge_app->add_option("--out", merge.out_dir, "treat the inputs as maps of one job, output here");
   merge_app->add_option("--reference", merge.reference, "with --out: the reference map's name");
+  merge_app
+      ->add_option("--tf-parent", merge.tf_parent_frame,
+                   "with --out: parent frame of the transforms written (transforms.launch*)")
+      ->capture_default_str();
+  merge_app
+      ->add_option("--tf-child", merge.tf_child_frame,
+                   "with --out: child frame of each map's transform; {name} is the map's name")
+      ->capture_default_str();
   merge_app->add_option("--threads", merge.options.threads, "threads (0: all cores)")
       ->check(CLI::NonNegativeNumber);
   merge_app
@@ -66,6 +82,15 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   AddMethodOptions(*merge_app, merge.options.pair);
+
+  ExtractCommand extract;
+  CLI::App* extract_app = app.add_subcommand(
+      "extract", "Write each map topic's last map of ROS 1/ROS 2 bags as map_server YAML + PGM");
+  extract_app->add_option("bags", extract.bags, "ROS 1 .bag files, ROS 2 bag folders, .db3, .mcap")
+      ->required();
+  extract_app->add_option("--out", extract.out_dir, "output folder")->required();
+  extract_app->add_option("--topic", extract.topics,
+                          "only these nav_msgs/OccupancyGrid topics (repeatable)");
 
   ExampleCommand example;
   CLI::App* example_app = app.add_subcommand(
@@ -137,6 +162,7 @@ int main(int argc, char** argv) {
     if (demo_app->parsed()) return RunDemoCommand(demo, std::cout, std::cerr);
     if (merge_app->parsed()) return RunMergeCommand(merge, std::cout, std::cerr);
     if (pair_app->parsed()) return RunPairCommand(pair, std::cout);
+    if (extract_app->parsed()) return RunExtractCommand(extract, std::cout);
     if (example_app->parsed()) return RunExampleCommand(example, std::cout);
     if (simulate_app->parsed()) return RunSimulateCommand(simulate, std::cout);
     if (eval_app->parsed()) return RunEvalCommand(eval, std::cout);

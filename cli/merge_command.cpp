@@ -79,7 +79,11 @@
   }  // namespace
 
   Job JobFromMapList(const MergeCommand& command) {
-    return MapListJob(command.inputs, *command.out_dir, command.reference, command.options);
+    Job job = MapListJob(command.inputs, *command.out_dir, command.reference, command.options,
+                       command.topics);
+  job.tf_parent_frame = command.tf_parent_frame;
+  job.tf_child_frame = command.tf_child_frame;
+  return job;
   }
 
   int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::ostream& err,

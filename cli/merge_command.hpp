@@ -17,6 +17,9 @@ struct MergeCommand {
   std::vector<std::filesystem::path> inputs;     // job files, or maps with --out
   std::optional<std::filesystem::path> out_dir;  // set: `inputs` are maps forming one job
   std::optional<std::string> reference;          // with --out: a map name
+  std::vector<std::string> topics;               // with --out: bags' map topics to read
+  std::string tf_parent_frame = "map";           // with --out: transforms' frames
+  std::string tf_child_frame = "{name}/map";
   bool quiet = false;
   bool force = false;    // replace an output folder holding another job's results
   FleetOptions options;  // with --out

@@ -5,7 +5,10 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 
+#include "core/error.hpp"
+#include "io/map_inputs.hpp"
 #include "io/map_io.hpp"
+#include "io/resampled_size.hpp"
 #include "pipeline/composite.hpp"
 #include "pipeline/html_report.hpp"
 #include "pipeline/preview.hpp"
@@ -78,8 +81,11 @@ MergedFiles WriteMerged(const PairCommand& command, const LoadedMap& a, const Lo
   const std::vector<CompositeInput> inputs = {{&a.grid, Pose2()},
                                               {&b.grid, result.hypotheses.front().T_a_b}};
   const OccupancyGrid merged = Composite(inputs, result.resolution_m);
-  const std::vector<std::filesystem::path> protect = {a.metadata.yaml_path, a.metadata.image_path,
-                                                      b.metadata.yaml_path, b.metadata.image_path};
+  std::vector<std::filesystem::path> protect;  // the inputs (a bag's map has no image path)
+  for (const auto& p :
+       {a.metadata.yaml_path, a.metadata.image_path, b.metadata.yaml_path, b.metadata.image_path}) {
+    if (!p.empty()) protect.push_back(p);
+  }
   MergedFiles files{dir / "merged.yaml", dir / "merged_preview.png", dir / kHtmlReportName};
   SaveMap(merged, files.yaml, protect);
   SaveImage(ColourPreview(inputs, merged), files.preview, protect);
@@ -87,8 +93,14 @@ MergedFiles WriteMerged(const PairCommand& command, const LoadedMap& a, const Lo
   return files;
 }
 
-void PrintText(const PairCommand& command, const PairResult& result, std::ostream& out) {
-  out << "a: " << command.a_yaml.string() << "\nb: " << command.b_yaml.string() << "\n";
+// "robot1 (robot1.bag topic /map)": the name merge would give, and where the map came from.
+std::string Describe(const JobMap& map) {
+  return map.name + " (" + map.source.string() + (map.topic.empty() ? "" : " topic " + map.topic) +
+         ")";
+}
+
+void PrintText(const std::vector<JobMap>& maps, const PairResult& result, std::ostream& out) {
+  out << "a: " << Describe(maps[0]) << "\nb: " << Describe(maps[1]) << "\n";
   if (result.resampled) {
     out << "note: maps have different resolutions; compared at the finer, " << result.resolution_m
         << " m\n";
@@ -113,8 +125,28 @@ void PrintText(const PairCommand& command, const PairResult& result, std::ostrea
 }  // namespace
 
 int RunPairCommand(const PairCommand& command, std::ostream& out) {
-  const LoadedMap a = LoadMap(command.a_yaml);
-  const LoadedMap b = LoadMap(command.b_yaml);
+  std::vector<JobMap> maps;
+  for (const auto& path : {command.a_yaml, command.b_yaml}) {
+    std::vector<JobMap> expanded = ExpandMapInputs({{path, path, "", command.topics}});
+    if (expanded.size() != 1) {
+      std::string topics;
+      for (const JobMap& m : expanded) topics += (topics.empty() ? "" : ", ") + m.topic;
+      throw Error(path.string() + ": has " + std::to_string(expanded.size()) + " map topics (" +
+                  topics + "); pick one with --topic");
+    }
+    maps.push_back(expanded.front());
+  }
+  // Named together, as merge --out names them (r1/map.yaml, r2/map.yaml: r1, r2).
+  std::vector<MapInput> both;
+  for (const JobMap& m : maps) {
+    both.push_back(
+        {m.source, m.path, "",
+         m.topic.empty() ? std::vector<std::string>{} : std::vector<std::string>{m.topic}});
+  }
+  maps = ExpandMapInputs(both);
+  const LoadedMap a = LoadJobMap(maps[0]);
+  const LoadedMap b = LoadJobMap(maps[1]);
+  CheckResampledSizes({&a, &b}, 0.0, kDefaultMaxMapCells);
   PairOptions options = command.options;
   options.hypotheses.max_hypotheses = command.hypotheses;
   const PairResult result = MergePair(a.grid, b.grid, options);
@@ -125,6 +157,8 @@ int RunPairCommand(const PairCommand& command, std::ostream& out) {
   if (command.json) {
     nlohmann::json j = {{"a", command.a_yaml.string()},
                         {"b", command.b_yaml.string()},
+                        {"a_name", maps[0].name},
+                        {"b_name", maps[1].name},
                         {"hypotheses", nlohmann::json::array()}};
     for (const auto& h : result.hypotheses) {
       j["hypotheses"].push_back({{"x", h.T_a_b.x_m()},
@@ -139,7 +173,7 @@ int RunPairCommand(const PairCommand& command, std::ostream& out) {
     }
     out << j.dump(2) << "\n";
   } else {
-    PrintText(command, result, out);
+    PrintText(maps, result, out);
     if (files) {
       out << "merged map: " << files->yaml.string() << "\npreview:    " << files->preview.string()
           << "\nreport:     " << files->page.string() << "\n";

@@ -5,15 +5,18 @@
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "pipeline/pair_merge.hpp"
 
 namespace fleetmerge {
 
 struct PairCommand {
-  std::filesystem::path a_yaml;
+  std::filesystem::path a_yaml;  // a map YAML or a bag
   std::filesystem::path b_yaml;
-  int hypotheses = 4;  // -n
+  std::vector<std::string> topics;  // bags: the map topic to read (each input needs exactly one)
+  int hypotheses = 4;               // -n
   bool json = false;
   std::optional<std::filesystem::path> out_dir;
   PairOptions options;

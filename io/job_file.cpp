@@ -6,11 +6,15 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
 
 #include "core/error.hpp"
+#include "io/bag_maps.hpp"
+#include "io/map_inputs.hpp"
+#include "io/map_names.hpp"
 #include "io/map_yaml.hpp"
 #include "io/octree_io.hpp"
 #include "io/octree_job_keys.hpp"
@@ -26,7 +30,7 @@ namespace {
 const std::vector<std::string> kJobKeys = {
     "name", "maps", "output", "reference", "resolution", "threads", "hypotheses_per_pair",
     "omega_threshold", "min_overlap_cells", "min_wall_agreement", "refine", "seed", "hough", "translation",
-    "pose_graph", "fusion", "octree", "max_map_cells"};
+    "pose_graph", "fusion", "octree", "max_map_cells", "tf_parent", "tf_child"};
 // clang-format on
 
 SamplingOptions ReadSampling(const YamlField& field, const YamlErrors& errors) {
@@ -141,35 +145,65 @@ struct ListedMap {
   YamlField name;  // the entry itself when the name is the file's
 };
 
-ListedMap ReadMap(const YamlField& entry, const fs::path& folder, const YamlErrors& errors) {
-  const std::string expected = "a map YAML path, or a mapping {path, name}";
-  ListedMap listed{{}, {}, entry, entry};
+// An entry: a path, or {path, name, topic}; a bag entry without `topic` lists every map topic.
+struct MapEntry {
+  MapInput input;
+  YamlField entry;
+  YamlField name;
+};
+
+MapEntry ReadMapEntry(const YamlField& entry, const fs::path& folder, const YamlErrors& errors) {
+  const std::string expected = "a map YAML or bag path, or a mapping {path, name, topic}";
+  MapEntry listed{{}, entry, entry};
   std::string source;
   if (entry.value.IsMap()) {
-    const YamlMapping map(entry, {"path", "name"}, expected, errors);
-    source = ReadString(map.Require("path", "a map YAML path"), "a map YAML path", errors);
+    const YamlMapping map(entry, {"path", "name", "topic"}, expected, errors);
+    source =
+        ReadString(map.Require("path", "a map YAML or bag path"), "a map YAML or bag path", errors);
     if (auto f = map.Find("name")) {
-      listed.map.name = ReadString(*f, "a map name", errors);
+      listed.input.name = ReadString(*f, "a map name", errors);
       listed.name = *f;
+    }
+    if (auto f = map.Find("topic")) {
+      listed.input.topics = {ReadString(*f, "a bag topic (nav_msgs/OccupancyGrid)", errors)};
     }
   } else {
     source = ReadString(entry, expected, errors);
   }
-  listed.map.source = source;
-  listed.map.path = Resolve(folder, source);
-  listed.canonical = Canonical(listed.map.path);
-  if (listed.map.name.empty()) listed.map.name = listed.map.source.stem().string();
+  listed.input.source = source;
+  listed.input.path = Resolve(folder, source);
+  return listed;
+}
+
+// The maps of one entry (a bag's topics), checked: the metadata only (or an octree's header,
+// a bag's topic list), so that a bad map stops the file before work.
+std::vector<ListedMap> ExpandEntry(const MapEntry& entry, const YamlErrors& errors) {
+  std::vector<ListedMap> maps;
   try {
-    // The metadata (or an octree's header) only: a bad map stops the file before work.
-    if (IsOctreePath(listed.map.path)) {
-      CheckOctreeFile(listed.map.path);
+    const fs::path& path = entry.input.path;
+    if (!entry.input.topics.empty() && !IsBagPath(path)) {
+      throw Error(path.string() + ": 'topic' is given but this is not a bag");
+    }
+    if (IsBagPath(path)) {
+      for (JobMap& map : ExpandMapInputs({entry.input})) {
+        map.name = entry.input.name;  // names are given over the whole list (ReadMaps)
+        maps.push_back({std::move(map), Canonical(path), entry.entry, entry.name});
+      }
     } else {
-      ReadMapYaml(listed.map.path);
+      if (IsOctreePath(path)) {
+        CheckOctreeFile(path);
+      } else {
+        ReadMapYaml(path);
+      }
+      maps.push_back({{entry.input.name, entry.input.source, path, ""},
+                      Canonical(path),
+                      entry.entry,
+                      entry.name});
     }
   } catch (const Error& e) {
-    errors.Fail(entry.key, entry.line, e.what());
+    errors.Fail(entry.entry.key, entry.entry.line, e.what());
   }
-  return listed;
+  return maps;
 }
 
 void CheckDistinctMaps(const std::vector<ListedMap>& maps, const YamlErrors& errors) {
@@ -182,9 +216,11 @@ void CheckDistinctMaps(const std::vector<ListedMap>& maps, const YamlErrors& err
                     "map name '" + maps[j].map.name + "' is also the name of " + first +
                         "; give each map a unique 'name'");
       }
-      if (maps[j].canonical == maps[i].canonical) {
+      if (maps[j].canonical == maps[i].canonical && maps[j].map.topic == maps[i].map.topic) {
         errors.Fail(maps[j].entry.key, maps[j].entry.line,
-                    "'" + maps[j].map.source.string() + "' is the same file as " + first);
+                    "'" + maps[j].map.source.string() + "'" +
+                        (maps[j].map.topic.empty() ? "" : " topic " + maps[j].map.topic) +
+                        " is the same file as " + first);
       }
     }
   }
@@ -197,7 +233,34 @@ std::vector<JobMap> ReadMaps(const YamlField& field, const fs::path& folder,
   }
   std::vector<ListedMap> listed;
   for (std::size_t i = 0; i < field.value.size(); ++i) {
-    listed.push_back(ReadMap(ListElement(field, i), folder, errors));
+    for (ListedMap& map :
+         ExpandEntry(ReadMapEntry(ListElement(field, i), folder, errors), errors)) {
+      listed.push_back(std::move(map));
+    }
+  }
+  // Maps without a `name`: named from their paths, never as a given name (io/map_names.hpp).
+  std::vector<MapNameInput> unnamed;
+  std::vector<std::string> taken;
+  std::map<fs::path, int> maps_per_bag;
+  for (const ListedMap& m : listed) {
+    if (!m.map.topic.empty()) ++maps_per_bag[m.canonical];
+  }
+  for (const ListedMap& m : listed) {
+    if (!m.map.name.empty()) {
+      taken.push_back(m.map.name);
+    } else {
+      unnamed.push_back({NamingPath(m.map.path), maps_per_bag[m.canonical] > 1 ? m.map.topic : ""});
+    }
+  }
+  std::vector<std::string> names;
+  try {
+    names = UniqueMapNames(unnamed, taken);
+  } catch (const Error& e) {
+    errors.Fail(field.key, field.line, e.what());
+  }
+  std::size_t k = 0;
+  for (ListedMap& m : listed) {
+    if (m.map.name.empty()) m.map.name = names[k++];
   }
   CheckDistinctMaps(listed, errors);
   std::vector<JobMap> maps;
@@ -249,6 +312,10 @@ ListedJob ReadJob(const YamlField& field, int number, const fs::path& job_file,
                 "'" + result.output_dir.string() + "' exists and is not a folder");
   }
   result.reference = ReadReference(job, result.maps, errors);
+  if (auto f = job.Find("tf_parent")) result.tf_parent_frame = ReadString(*f, "a frame id", errors);
+  if (auto f = job.Find("tf_child")) {
+    result.tf_child_frame = ReadString(*f, "a frame id pattern with {name}", errors);
+  }
   ReadOptions(job, result.options, errors);
   return listed;
 }

@@ -17,7 +17,7 @@ LoadedMap LoadMap(const fs::path& yaml_path, std::int64_t max_cells) {
   const GridGeometry geometry(metadata.resolution_m, {image.size().width, image.size().height},
                               metadata.origin);
   OccupancyGrid grid(geometry, PixelsToCells(image, metadata));
-  return LoadedMap{std::move(grid), std::move(metadata)};
+  return LoadedMap{std::move(grid), std::move(metadata), std::nullopt};
 }
 
 void SaveMap(const OccupancyGrid& grid, const fs::path& yaml_path,

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <filesystem>
 #include <opencv2/core.hpp>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "core/occupancy_grid.hpp"
@@ -28,9 +30,18 @@ struct MapMetadata {
   MapMode mode = MapMode::kTrinary;
 };
 
+// Where a map read from a bag came from (io/bag_maps.hpp); reported in report.json.
+struct BagMapInfo {
+  std::filesystem::path bag;
+  std::string topic, type, frame_id;  // frame_id: the message's header.frame_id
+  std::int64_t log_time_ns = 0;       // when the recorder received the message
+  std::int64_t stamp_ns = 0;          // its header.stamp
+};
+
 struct LoadedMap {
   OccupancyGrid grid;  // cells hold CellState values only
   MapMetadata metadata;
+  std::optional<BagMapInfo> bag;  // set for a map read from a bag (metadata.yaml_path: the bag)
 };
 
 // Loads a map_server YAML and its image. Pixel value v in 0..255 (16-bit images are scaled to

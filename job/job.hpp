@@ -11,9 +11,10 @@
 namespace fleetmerge {
 
 struct JobMap {
-  std::string name;              // given in the job, else the YAML's file name without extension
+  std::string name;              // given in the job, else from the path (io/map_names.hpp)
   std::filesystem::path source;  // as written in the job file (reported in report.json)
   std::filesystem::path path;    // resolved: relative paths are relative to the job file's folder
+  std::string topic;             // a bag's map: its nav_msgs/OccupancyGrid topic; else empty
 };
 
 struct Job {
@@ -22,6 +23,9 @@ struct Job {
   std::vector<JobMap> maps;
   std::filesystem::path output_dir;  // resolved like map paths
   std::string reference;             // a map name; default the first map
+  // Frames of the transforms written beside report.json (pipeline/launch_files.hpp).
+  std::string tf_parent_frame = "map";
+  std::string tf_child_frame = "{name}/map";  // {name}: the map's name
   FleetOptions options;
 };
 

@@ -7,9 +7,12 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/map_inputs.hpp"
 #include "io/octree_io.hpp"
+#include "io/resampled_size.hpp"
 #include "io/result_folder.hpp"
 #include "pipeline/html_report.hpp"
+#include "pipeline/launch_files.hpp"
 #include "pipeline/parallel.hpp"
 #include "pipeline/preview.hpp"
 #include "pipeline/report_json.hpp"
@@ -58,7 +61,7 @@ std::vector<LoadedMap> LoadJobMaps(const Job& job, int threads, std::vector<JobO
     try {
       const auto& path = job.maps[m].path;
       loaded[m] = IsOctreePath(path) ? LoadOctreeMap(path, job.options.octree, octrees[m])
-                                     : LoadMap(path, job.options.max_map_cells);
+                                     : LoadJobMap(job.maps[m], job.options.max_map_cells);
     } catch (...) {  // kept per map so that the first in job order is the one reported
       failures[m] = std::current_exception();
     }
@@ -73,26 +76,14 @@ std::vector<LoadedMap> LoadJobMaps(const Job& job, int threads, std::vector<JobO
 
 Job MapListJob(const std::vector<std::filesystem::path>& paths,
                const std::filesystem::path& output_dir, const std::optional<std::string>& reference,
-               const FleetOptions& options) {
+               const FleetOptions& options, const std::vector<std::string>& topics) {
   Job job;
   job.name = "merge";
   job.output_dir = output_dir;
   job.options = options;
-  for (const auto& path : paths) {
-    for (const JobMap& earlier : job.maps) {
-      std::error_code ec;
-      if (std::filesystem::equivalent(earlier.path, path, ec)) {
-        throw Error(path.string() + " is listed twice (the same file as " + earlier.path.string() +
-                    ")");
-      }
-      if (earlier.name == path.stem().string()) {
-        throw Error(path.string() + " and " + earlier.path.string() + " would both be named '" +
-                    earlier.name + "' (maps are named by file stem with --out; give them " +
-                    "distinct file names or use a job file with 'name' keys)");
-      }
-    }
-    job.maps.push_back({path.stem().string(), path, path});
-  }
+  std::vector<MapInput> inputs;
+  for (const auto& path : paths) inputs.push_back({path, path, "", topics});
+  job.maps = ExpandMapInputs(inputs);
   job.reference = reference.value_or(job.maps.empty() ? "" : job.maps.front().name);
   bool found = false;
   for (const auto& m : job.maps) found = found || m.name == job.reference;
@@ -135,6 +126,12 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     }
     if (job.maps[m].name == job.reference) reference = static_cast<int>(m);
   }
+  {  // a map that would not fit once resampled fails the job now, naming its file
+    std::vector<const LoadedMap*> maps;
+    for (const auto& l : loaded) maps.push_back(&l);
+    CheckResampledSizes(maps, job.options.resolution_m, job.options.max_map_cells);
+  }
+  CheckTransformFrames(job);
   // Checked before the work (a folder that may not be replaced fails the job now); every file
   // then goes to a staging folder, swapped in as a whole (io/result_folder.hpp).
   std::optional<ResultFolder> folder;
@@ -164,6 +161,20 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
   timing.total_ms = load_ms + MillisecondsSince(start);
   outcome.report = MakeReport(job, result, files, timing);
   AddOctreesToReport(outcome.report, job_octrees, octree_outputs);
+  for (std::size_t c = 0; c < result.components.size(); ++c) {
+    outcome.report["components"][c]["frame"] = ParentFrame(job, static_cast<int>(c));
+  }
+  for (std::size_t m = 0; m < loaded.size(); ++m) {
+    outcome.report["maps"][m]["frame"] = ChildFrame(job, job.maps[m].name);
+    if (!loaded[m].bag) continue;
+    const BagMapInfo& bag = *loaded[m].bag;
+    outcome.report["maps"][m]["bag"] = {{"path", bag.bag.generic_string()},
+                                        {"topic", bag.topic},
+                                        {"type", bag.type},
+                                        {"frame_id", bag.frame_id},
+                                        {"log_time_ns", bag.log_time_ns},
+                                        {"stamp_ns", bag.stamp_ns}};
+  }
   if (folder) {
     // report.html (pipeline/html_report.hpp) is part of the set; its write time is added to
     // report.json after the page is made (the page shows the times before it).
@@ -176,6 +187,11 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     WriteFileAtomically(folder->staging_dir() / "report.json", outcome.report.dump(2) + "\n",
                         protect);
     written.push_back("report.json");
+    WriteFileAtomically(folder->staging_dir() / kRos2LaunchFile, Ros2TransformsLaunch(job, result),
+                        protect);
+    WriteFileAtomically(folder->staging_dir() / kRos1LaunchFile, Ros1TransformsLaunch(job, result),
+                        protect);
+    written.insert(written.end(), {kRos2LaunchFile, kRos1LaunchFile});
     folder->Publish(written);
   }
   return outcome;

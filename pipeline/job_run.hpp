@@ -33,12 +33,14 @@ struct JobOutcome {
 // plans, and `octrees` gets one entry per map (empty for a 2-D map).
 std::vector<LoadedMap> LoadJobMaps(const Job& job, int threads, std::vector<JobOctree>& octrees);
 
-// The job of `fleetmerge merge --out DIR a.yaml b.yaml ...`: named "merge", maps named after
-// their file stems, the reference (a map name) by default the first map. Throws fleetmerge::Error
-// for a file listed twice, two maps that would share a name, or an unknown reference.
+// The job of `fleetmerge merge --out DIR a.yaml b.bag ...`: named "merge", each map file one map
+// and each bag one map per OccupancyGrid topic (`topics`: only these), named as
+// io/map_inputs.hpp says (file stems, or the shortest unique trailing path where stems collide),
+// the reference (a map name) by default the first map. Throws fleetmerge::Error for a file
+// listed twice, a bag without the topics, or an unknown reference.
 Job MapListJob(const std::vector<std::filesystem::path>& paths,
                const std::filesystem::path& output_dir, const std::optional<std::string>& reference,
-               const FleetOptions& options);
+               const FleetOptions& options, const std::vector<std::string>& topics = {});
 
 // Who wrote an output folder (its manifest, io/result_folder.hpp): the job file and job name,
 // or for a job without a file the set of maps. Rerunning the same job replaces its results;

@@ -309,9 +309,9 @@ TEST_F(MergeCliTest, MapOfAnotherBuildingStaysUnmerged) {
     }
   }
   const std::set<std::string> expected = {
-      ".fleetmerge-job",  "report.json",          "merged_0.yaml",
-      "merged_0.pgm",     "merged_0_preview.png", "report.html",
-      "report_map_0.png", "report_map_1.png",     "report_map_2.png"};
+      ".fleetmerge-job",      "report.json",       "merged_0.yaml",         "merged_0.pgm",
+      "merged_0_preview.png", "transforms.launch", "transforms.launch.yaml", "report.html",
+      "report_map_0.png",     "report_map_1.png",  "report_map_2.png"};
   EXPECT_EQ(FilesIn(out), expected) << "no merged map for the unmerged component";
 }
 
@@ -470,7 +470,7 @@ TEST_F(MergeCliTest, RefusesToOverwriteAnInputAndItsImage) {
 namespace fleetmerge {
 namespace {
 
-TEST(MergeCliDuplicates, SameFileTwiceAndClashingNamesAreRefused) {
+TEST(MergeCliDuplicates, SameFileTwiceIsRefusedAndClashingStemsAreNamedByFolder) {
   const auto dir = testing::MakeTempDir("merge_dup");
   ASSERT_EQ(testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " example " +
                                 (dir / "s1").string() + " --seed 1")
@@ -487,13 +487,15 @@ TEST(MergeCliDuplicates, SameFileTwiceAndClashingNamesAreRefused) {
                           (dir / "o1").string() + " " + a1 + " " + a1);
   EXPECT_NE(twice.exit_code, 0);
   EXPECT_NE(twice.err.find("is listed twice"), std::string::npos) << twice.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "o1"));
+  // Same stem in two folders: named by the folders (io/map_names.hpp).
   const auto clash =
       testing::RunCommand(std::string(FLEETMERGE_EXECUTABLE) + " merge --quiet --out " +
                           (dir / "o2").string() + " " + a1 + " " + a2);
-  EXPECT_NE(clash.exit_code, 0);
-  EXPECT_NE(clash.err.find("would both be named 'robot_a'"), std::string::npos) << clash.err;
-  EXPECT_FALSE(std::filesystem::exists(dir / "o1"));
-  EXPECT_FALSE(std::filesystem::exists(dir / "o2"));
+  ASSERT_EQ(clash.exit_code, 0) << clash.err;
+  const json report = json::parse(ReadFile(dir / "o2" / "report.json"));
+  EXPECT_EQ(report["maps"][0]["name"], "s1");
+  EXPECT_EQ(report["maps"][1]["name"], "s2");
 }
 
 }  // namespace

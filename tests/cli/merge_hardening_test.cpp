@@ -111,10 +111,14 @@ TEST_F(MergeHardeningTest, AbsurdResolutionRefusedBeforeResampling) {
   const auto run = Fleetmerge("merge --quiet --out " + ShellQuote(dir_ / "o") + " " +
                               ShellQuote(A()) + " " + ShellQuote(dir_ / "ex" / "tiny_cells.yaml"));
   EXPECT_EQ(run.exit_code, 1);
-  EXPECT_NE(run.err.find("map 1 (in job order), 600 x 276 cells of 0.05 m, would be 3e+10 x "
-                         "1.38e+10 cells at the job's resolution 1e-09 m, more than the limit"),
+  // Refused before any work (io/resampled_size.hpp), naming both files.
+  EXPECT_NE(run.err.find(A().string() +
+                         ": its 600 x 276 cells of 0.05 m would become 4.14e+20 "
+                         "cells at 1e-09 m per cell (the finest resolution, that of " +
+                         (dir_ / "ex" / "tiny_cells.yaml").string() + "), more than the limit"),
             std::string::npos)
       << run.err;
+  EXPECT_FALSE(fs::exists(dir_ / "o"));
 }
 
 TEST_F(MergeHardeningTest, AnotherJobsResultsNeedForceAndForeignFilesAreKept) {

@@ -26,7 +26,7 @@ def map_seed(yaml_path):
 
 
 def main():
-    seeds = {"map": {}, "job": {}, "octree": {}}
+    seeds = {"map": {}, "job": {}, "octree": {}, "bag": {}}
     octrees = os.path.join(DATA, "octree")
     for name in sorted(os.listdir(octrees)):
         if name.endswith((".bt", ".ot")):
@@ -45,9 +45,22 @@ def main():
             seeds["job"]["bad_" + case] = open(os.path.join(folder, "job.yaml"), "rb").read()
         elif os.path.isfile(os.path.join(folder, "map.yaml")):
             seeds["map"]["bad_" + case] = map_seed(os.path.join(folder, "map.yaml"))
+        reader = re.search(r"^reader: (\S+)", open(os.path.join(folder, "case.txt")).read(), re.M)
+        if reader and reader.group(1) == "bag":
+            for root, _, names in os.walk(folder):
+                for name in names:
+                    if name.endswith((".bag", ".mcap", ".db3")):
+                        seeds["bag"]["bad_" + case + "_" + name.replace(".", "_")] = open(
+                            os.path.join(root, name), "rb").read()
         for tree in ("tree.bt", "tree.ot"):
             if os.path.isfile(os.path.join(folder, tree)):
                 seeds["octree"]["bad_" + case] = open(os.path.join(folder, tree), "rb").read()
+    mcap = os.path.join(DATA, "bags", "mcap_sim_seed3")
+    for robot in sorted(os.listdir(mcap)):
+        for name in sorted(os.listdir(os.path.join(mcap, robot))):
+            if name.endswith(".mcap") and os.path.getsize(os.path.join(mcap, robot, name)) < 64000:
+                seeds["bag"]["fixture_" + name.replace(".", "_")] = open(
+                    os.path.join(mcap, robot, name), "rb").read()
     seeds["job"]["good_one_job"] = (b"name: pair\nmaps: [a.yaml, {path: b.yaml, name: robot_b}]\n"
                                     b"output: out\nreference: robot_b\nthreads: 2\n"
                                     b"max_map_cells: 1000\nhough: {n_theta: 90, rho_step: 2, "

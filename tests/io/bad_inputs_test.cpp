@@ -17,6 +17,7 @@
 
 #include "core/error.hpp"
 #include "io/job_file.hpp"
+#include "io/map_inputs.hpp"
 #include "io/map_io.hpp"
 #include "io/octree_io.hpp"
 
@@ -29,6 +30,11 @@ const std::map<std::string, std::function<void(const fs::path&)>>& Readers() {
       {"map", [](const fs::path& path) { LoadMap(path); }},
       {"job", [](const fs::path& path) { LoadJobFile(path); }},
       {"octree", [](const fs::path& path) { LoadOctree(path); }},
+      // Every map topic of the bag, as `merge --out BAG` loads them (io/map_inputs.hpp).
+      {"bag",
+       [](const fs::path& path) {
+         for (const JobMap& map : ExpandMapInputs({{path, path, "", {}}})) LoadJobMap(map);
+       }},
   };
   return readers;
 }

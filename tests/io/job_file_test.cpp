@@ -369,7 +369,7 @@ TEST_F(JobFileTest, MissingKeysAndEmptyLists) {
   ExpectError("maps: maps/a.yaml\noutput: out\n", 1, "maps", "got 'maps/a.yaml'");
   ExpectError("maps:\n  - name: first\noutput: out\n", 2, "maps[0].path", "missing");
   ExpectError("maps:\n  - [maps/a.yaml]\noutput: out\n", 2, "maps[0]",
-              "expected a map YAML path, or a mapping {path, name}");
+              "expected a map YAML or bag path, or a mapping {path, name, topic}");
   ExpectError("jobs: []\n", 1, "jobs", "expected a non-empty list of jobs");
   ExpectError("jobs: 3\n", 1, "jobs", "expected a non-empty list of jobs, got '3'");
   ExpectError("jobs:\n  - maps.yaml\n", 2, "jobs[0]", "expected a job");
@@ -378,8 +378,15 @@ TEST_F(JobFileTest, MissingKeysAndEmptyLists) {
 }
 
 TEST_F(JobFileTest, MapsOfAJobAreDistinct) {
-  ExpectError("maps:\n  - maps/a.yaml\n  - other/a.yaml\noutput: out\n", 3, "maps[1]",
-              "map name 'a' is also the name of maps[0] (line 2)");
+  // Same stem in two folders: named by their folders (io/map_names.hpp), never as a given name.
+  const std::vector<Job> folders = Load("maps:\n  - maps/a.yaml\n  - other/a.yaml\noutput: out\n");
+  ASSERT_EQ(folders.size(), 1u);
+  EXPECT_EQ(folders[0].maps[0].name, "maps");
+  EXPECT_EQ(folders[0].maps[1].name, "other");
+  const std::vector<Job> given =
+      Load("maps:\n  - maps/a.yaml\n  - {path: other/a.yaml, name: a}\noutput: out\n");
+  EXPECT_EQ(given[0].maps[0].name, "maps");
+  EXPECT_EQ(given[0].maps[1].name, "a");
   ExpectError(
       "maps:\n  - {path: maps/a.yaml, name: x}\n  - {path: maps/b.yaml, name: x}\n"
       "output: out\n",

@@ -257,6 +257,238 @@ octree_case("octree_nan_log_odds",
             "node 1 has a log-odds that is not a finite number", file="tree.ot")
 
 
+# --- Bags (reader "bag": every map topic of the bag loaded, as merge --out does) -------------
+# Valid bags come from independent writers (Debian's python3-rosbag; ../bags/make_bags.py's
+# rosbag2 db3 writer; a minimal MCAP writer below), then are damaged. Needs /usr/bin/python3
+# with python3-rosbag and the zstd tool.
+import subprocess
+import sys
+import tempfile
+
+BAGS = os.path.join(HERE, "..", "bags")
+TINY_PGM = b"P5\n40 30\n255\n" + bytes(([254] * 13 + [0, 205]) * 80)
+TINY_YAML = b"image: tiny.pgm\nresolution: 0.05\norigin: [1.0, 2.0, 0.3]\nnegate: 0\n" \
+            b"occupied_thresh: 0.65\nfree_thresh: 0.196\n"
+
+
+def bag_case(name, files, expect, entry="robot.bag"):
+    CASES[name] = ("bag", files, entry, expect)
+
+
+def with_tiny_map(run):
+    with tempfile.TemporaryDirectory() as d:
+        open(os.path.join(d, "tiny.pgm"), "wb").write(TINY_PGM)
+        open(os.path.join(d, "tiny.yaml"), "wb").write(TINY_YAML)
+        return run(d)
+
+
+def make_bags(*args):
+    def run(d):
+        out = os.path.join(d, "out")
+        subprocess.run(["/usr/bin/python3", os.path.join(BAGS, "make_bags.py")] + list(args) +
+                       ["--map", os.path.join(d, "tiny.yaml"), "--out", out], check=True)
+        if os.path.isdir(out):
+            return {f: open(os.path.join(out, f), "rb").read() for f in os.listdir(out)}
+        return open(out, "rb").read()
+    return with_tiny_map(run)
+
+
+def ros1_bag(write, compression="none"):
+    import rosbag
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "b.bag")
+        bag = rosbag.Bag(path, "w", compression=compression)
+        write(bag)
+        bag.close()
+        return open(path, "rb").read()
+
+
+def grid(width=4, height=3, resolution=0.05, cells=None):
+    import rospy
+    from nav_msgs.msg import OccupancyGrid
+    m = OccupancyGrid()
+    m.header.stamp = rospy.Time(1700000000)
+    m.header.frame_id = "map"
+    m.info.resolution = resolution
+    m.info.width, m.info.height = width, height
+    m.info.origin.orientation.w = 1.0
+    m.data = cells if cells is not None else [0] * (width * height)
+    return m
+
+
+def at(seconds):
+    import rospy
+    return rospy.Time(1700000000 + seconds)
+
+
+def damaged(data, magic, offset, replacement):
+    i = data.index(magic) + offset
+    return data[:i] + replacement + data[i + len(replacement):]
+
+
+def mcap(records):
+    """A minimal MCAP file (spec v0): header, the given data-section records, data end, footer."""
+    def record(op, body):
+        return bytes([op]) + struct.pack("<Q", len(body)) + body
+
+    def string(s):
+        return struct.pack("<I", len(s)) + s.encode()
+    out = b"\x89MCAP0\r\n" + record(1, string("ros2") + string("generate.py"))
+    for op, body in records:
+        out += record(op, body)
+    out += record(0x0F, struct.pack("<I", 0)) + record(2, struct.pack("<QQI", 0, 0, 0))
+    return out + b"\x89MCAP0\r\n"
+
+
+def mcap_grid_records(payload, compression="", compressed=None):
+    def string(s):
+        return struct.pack("<I", len(s)) + s.encode()
+    schema = struct.pack("<H", 1) + string("nav_msgs/msg/OccupancyGrid") + string("ros2msg") + \
+        struct.pack("<I", 0)
+    channel = struct.pack("<HH", 1, 1) + string("/map") + string("cdr") + struct.pack("<I", 0)
+    message = struct.pack("<HIQQ", 1, 0, 5, 5) + payload
+    inner = b"".join(bytes([op]) + struct.pack("<Q", len(b)) + b
+                     for op, b in ((3, schema), (4, channel), (5, message)))
+    data = compressed if compressed is not None else inner
+    chunk = struct.pack("<QQQI", 5, 5, len(inner), 0) + string(compression) + \
+        struct.pack("<Q", len(data)) + data
+    return [(6, chunk)]
+
+
+def add_bag_cases():
+    try:
+        import rosbag  # noqa: F401
+    except ImportError:
+        sys.exit("generate.py: the bag cases need Debian's python3-rosbag (/usr/bin/python3)")
+    sys.path.insert(0, BAGS)
+    import make_bags as bag_writer
+    from std_msgs.msg import String
+
+    good = make_bags("ros1", "--compression", "none", "--messages", "2")
+    bag_case("bag_ros1_loads", {"robot.bag": good}, None)
+    bag_case("bag_truncated", {"robot.bag": good[:len(good) * 2 // 3]}, "truncated bag")
+    unindexed = make_bags("ros1", "--compression", "none", "--unindexed", "--messages", "2")
+    bag_case("bag_truncated_unindexed", {"robot.bag": unindexed[:len(unindexed) - 700]},
+             "truncated bag")
+    bz2 = make_bags("ros1", "--compression", "bz2", "--messages", "2")
+    bag_case("bag_corrupt_bz2", {"robot.bag": damaged(bz2, b"BZh9", 12, b"\xff" * 16)},
+             "corrupt bz2 data")
+    lz4 = make_bags("ros1", "--compression", "lz4", "--messages", "2")
+    bag_case("bag_corrupt_lz4", {"robot.bag": damaged(lz4, b"\x04\x22\x4d\x18", 0, b"LZ5!")},
+             "corrupt lz4 data")
+    bag_case("bag_not_a_bag", {"robot.bag": b"this is a text file, not a bag\n"},
+             "not a ROS 1 bag")
+    bag_case("bag_format_1_2", {"robot.bag": b"#ROSBAG V1.2\n" + b"\0" * 64},
+             "ROS bag format 1.2 is not supported")
+
+    def chatter_only(bag):
+        bag.write("/chatter", String(data="hello"), at(1))
+    bag_case("bag_no_occupancy_grid", {"robot.bag": ros1_bag(chatter_only)},
+             "no nav_msgs/OccupancyGrid topic; the bag has /chatter (std_msgs/String)")
+
+    def octomap_only(bag):
+        bag.write("/octomap_binary", String(data="not really an octree"), at(1),
+                  connection_header={"topic": "/octomap_binary", "type": "octomap_msgs/Octomap",
+                                     "md5sum": "9a45536b45c5e409cd49f04bb2d9999f",
+                                     "message_definition": "bool binary\n"})
+    bag_case("bag_octomap_only", {"robot.bag": ros1_bag(octomap_only)},
+             "octomap_msgs topics are not read from bags (out of scope)")
+
+    def wrong_size(bag):
+        bag.write("/map", grid(4, 3, cells=[0] * 10), at(1))
+    bag_case("bag_data_size_mismatch", {"robot.bag": ros1_bag(wrong_size)},
+             "topic /map: data has 10 cells, expected width x height = 4 x 3 = 12")
+
+    def nan_resolution(bag):
+        bag.write("/map", grid(4, 3, resolution=float("nan")), at(1))
+    bag_case("bag_nan_resolution", {"robot.bag": ros1_bag(nan_resolution)},
+             "topic /map: info.resolution is nan")
+
+    def huge(bag):  # 1e9 cells claimed; the message holds 12
+        bag.write("/map", grid(100000, 10000, cells=[0] * 12), at(1))
+    bag_case("bag_grid_size_lies", {"robot.bag": ros1_bag(huge)}, "data has 12 cells")
+
+    # ROS 2: rosbag2 SQLite (make_bags.py db3), damaged with sqlite3.
+    import sqlite3
+
+    def db3_case(name, expect, patch=None, distro="humble", entry="robot"):
+        files = make_bags("db3", "--distro", distro, "--messages", "2")
+        files = {("robot/" + k if k == "metadata.yaml" else "robot/" + k): v
+                 for k, v in files.items()}
+        files = {k.replace("out_0.db3", "robot_0.db3"): v.replace(b"out_0.db3", b"robot_0.db3")
+                 if k.endswith(".yaml") else v for k, v in files.items()}
+        if patch:
+            files = patch(files)
+        bag_case(name, files, expect, entry=entry)
+
+    db3_case("bag_db3_humble_loads", None)
+    db3_case("bag_db3_jazzy_loads", None, distro="jazzy")
+
+    def short_cdr(files):
+        with tempfile.TemporaryDirectory() as d:
+            p = os.path.join(d, "x.db3")
+            open(p, "wb").write(files["robot/robot_0.db3"])
+            db = sqlite3.connect(p)
+            db.execute("UPDATE messages SET data = substr(data, 1, 300) WHERE topic_id = "
+                       "(SELECT id FROM topics WHERE name = '/map')")
+            db.commit()
+            db.close()
+            files["robot/robot_0.db3"] = open(p, "rb").read()
+        return files
+    db3_case("bag_cdr_shorter_than_it_says", "topic /map: CDR payload: data needs 1200 bytes",
+             short_cdr)
+
+    def no_metadata(files):
+        del files["robot/metadata.yaml"]
+        return files
+    db3_case("bag_folder_without_metadata", "is a folder but not a ROS 2 bag", no_metadata)
+
+    def bad_storage(files):
+        files["robot/metadata.yaml"] = files["robot/metadata.yaml"].replace(
+            b"storage_identifier: sqlite3", b"storage_identifier: rosbag_v2")
+        return files
+    db3_case("bag_metadata_unknown_storage", "expected sqlite3 or mcap, got 'rosbag_v2'",
+             bad_storage)
+
+    def missing_file(files):
+        del files["robot/robot_0.db3"]
+        return files
+    db3_case("bag_metadata_missing_file", "robot_0.db3' does not exist", missing_file)
+
+    def file_compression(files):
+        files["robot/metadata.yaml"] = files["robot/metadata.yaml"].replace(
+            b'compression_format: ""', b"compression_format: zstd").replace(
+            b'compression_mode: ""', b"compression_mode: FILE")
+        return files
+    db3_case("bag_db3_file_compression", "FILE compression", file_compression)
+    bag_case("bag_db3_not_sqlite", {"robot.db3": b"SQLite? no, plain text\n" * 10},
+             "expected a rosbag2 SQLite 3 bag", entry="robot.db3")
+    bag_case("bag_plain_folder", {"robot/notes.txt": b"maps are elsewhere\n"},
+             "is a folder but not a ROS 2 bag", entry="robot")
+
+    # MCAP (a minimal writer above; CDR from make_bags.py's encoder).
+    payload = bag_writer.cdr_occupancy_grid(
+        5, "map", {"resolution": 0.05, "origin": [0.0, 0.0, 0.0], "width": 4, "height": 3,
+                   "cells": [0] * 12})
+    bag_case("bag_mcap_loads", {"robot.mcap": mcap(mcap_grid_records(payload))}, None,
+             entry="robot.mcap")
+    bag_case("bag_mcap_corrupt_zstd",
+             {"robot.mcap": mcap(mcap_grid_records(payload, "zstd", b"\x28\xb5\x2f\xfdgarbage"))},
+             "corrupt zstd data", entry="robot.mcap")
+    bag_case("bag_mcap_corrupt_lz4",
+             {"robot.mcap": mcap(mcap_grid_records(payload, "lz4", b"\x04\x22\x4d\x18\x00junk"))},
+             "corrupt lz4 data", entry="robot.mcap")
+    bag_case("bag_mcap_cdr_short", {"robot.mcap": mcap(mcap_grid_records(payload[:60]))},
+             "CDR payload", entry="robot.mcap")
+    bag_case("bag_mcap_truncated", {"robot.mcap": mcap(mcap_grid_records(payload))[:90]},
+             "truncated or corrupt", entry="robot.mcap")
+    bag_case("bag_mcap_brotli", {"robot.mcap": mcap(mcap_grid_records(payload, "brotli", b"x"))},
+             "unknown chunk compression 'brotli'", entry="robot.mcap")
+
+
+add_bag_cases()
+
+
 def main():
     for entry in os.listdir(HERE):
         if os.path.isdir(os.path.join(HERE, entry)):
@@ -265,6 +497,7 @@ def main():
         folder = os.path.join(HERE, name)
         os.makedirs(folder)
         for file, data in files.items():
+            os.makedirs(os.path.dirname(os.path.join(folder, file)), exist_ok=True)
             with open(os.path.join(folder, file), "wb") as out:
                 out.write(data)
         with open(os.path.join(folder, "case.txt"), "w") as out:
