@@ -40,6 +40,7 @@ const browser = spawn(chromium, [
   "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
   "--disable-background-networking", "--disable-component-update", "--disable-sync",
   "--disable-extensions", "--force-color-profile=srgb", "--hide-scrollbars",
+  "--disable-dev-shm-usage",  // containers' small /dev/shm crashes Chromium's renderer
   "--remote-debugging-pipe", "--user-data-dir=" + profile, "about:blank",
 ], { stdio: ["ignore", "ignore", "pipe", "pipe", "pipe"] });
 let stderr = "";
