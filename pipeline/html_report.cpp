@@ -22,6 +22,8 @@ nlohmann::json PoseJson(const Pose2& T) {
 
 std::string MapImageName(std::size_t m) { return "report_map_" + std::to_string(m) + ".png"; }
 
+bool HasCells(const OccupancyGrid& grid) { return grid.width() > 0 && grid.height() > 0; }
+
 // The map's cells one pixel each, image row 0 at the top (highest y): occupied opaque black,
 // free opaque near-white, unknown transparent. The page recolours them per map (screen blend
 // keeps black -> the tint, white -> white), so one image serves every colour and hypothesis.
@@ -92,7 +94,8 @@ nlohmann::json PageJson(const HtmlReport& page) {
   for (std::size_t m = 0; m < page.maps.size(); ++m) {
     const HtmlReportMap& map = page.maps[m];
     nlohmann::json j = GeometryJson(*map.grid);
-    j["image"] = MapImageName(m);
+    // A grid without cells has no image (an empty PNG cannot be written); the page draws nothing.
+    j["image"] = HasCells(*map.grid) ? nlohmann::json(MapImageName(m)) : nlohmann::json();
     j["input"] = {{"path", map.input_path},
                   {"width", map.input_width},
                   {"height", map.input_height},
@@ -247,11 +250,12 @@ std::vector<std::string> WriteHtmlReport(const HtmlReport& page, const std::file
   for (std::size_t m = 0; m < page.maps.size(); ++m) {
     if (!page.maps[m].grid)
       throw Error("internal: report.html map " + std::to_string(m) + " unset");
-    written.push_back(MapImageName(m));
+    if (HasCells(*page.maps[m].grid)) written.push_back(MapImageName(m));
   }
   // On threads: each atomic write waits for its fsync (about 8 ms a file measured here), and the
   // waits overlap.
   ParallelFor(page.maps.size(), threads, [&](std::size_t m) {
+    if (!HasCells(*page.maps[m].grid)) return;
     SaveImage(MapImage(*page.maps[m].grid), dir / MapImageName(m), protect);
   });
   WriteFileAtomically(dir / kHtmlReportName, HtmlReportText(page), protect);

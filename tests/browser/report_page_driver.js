@@ -40,6 +40,7 @@ const browser = spawn(chromium, [
   "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
   "--disable-background-networking", "--disable-component-update", "--disable-sync",
   "--disable-extensions", "--force-color-profile=srgb", "--hide-scrollbars",
+  "--disable-dev-shm-usage",  // containers' small /dev/shm crashes Chromium's renderer
   "--remote-debugging-pipe", "--user-data-dir=" + profile, "about:blank",
 ], { stdio: ["ignore", "ignore", "pipe", "pipe", "pipe"] });
 let stderr = "";
@@ -47,12 +48,24 @@ browser.stderr.on("data", (d) => { stderr += d; });
 
 function fail(message) {
   process.stderr.write("report_page_driver: " + message + "\n" + stderr.slice(-2000) + "\n");
-  cleanup();
-  process.exit(2);
+  finish(2);
 }
-function cleanup() {
-  try { browser.kill("SIGKILL"); } catch (e) { /* already gone */ }
-  try { fs.rmSync(profile, { recursive: true, force: true }); } catch (e) { /* best effort */ }
+// Closes Chromium (politely, then SIGKILL after 3 s), removes its profile once it has exited
+// (it writes there until then), and exits with `code`.
+let finishing = false;
+function finish(code) {
+  if (finishing) return;
+  finishing = true; finished = true;
+  const done = () => {
+    try { fs.rmSync(profile, { recursive: true, force: true }); } catch (e) { /* best effort */ }
+    process.exit(code);
+  };
+  if (browser.exitCode !== null || browser.signalCode !== null) return done();
+  browser.on("exit", done);
+  const kill = setTimeout(() => { try { browser.kill("SIGKILL"); } catch (e) { /* gone */ } }, 3000);
+  kill.unref();
+  session = undefined;
+  try { send("Browser.close").catch(() => {}); } catch (e) { browser.kill("SIGKILL"); }
 }
 const deadline = setTimeout(() => fail("timed out after 90 s"), 90000);
 browser.on("error", (e) => fail("cannot start " + chromium + ": " + e.message));
@@ -276,6 +289,5 @@ listeners.push((m) => {
     sorted,
     page_screenshot: pageShot, pairs_screenshot: pairsShot, device_scale: DEVICE_SCALE,
     timing_ms: { load: loadMs, total: Date.now() - started } }) + "\n");
-  cleanup();
-  process.exit(0);
+  finish(0);
 })().catch((e) => fail(e.stack || String(e)));

@@ -75,6 +75,20 @@ TEST(HtmlReport, MapImageHasOnePixelPerCellWithTheTopRowFirst) {
   EXPECT_EQ(map.at("known_cells"), 2);
 }
 
+TEST(HtmlReport, MapWithoutCellsGetsNoImageAndDoesNotFailThePage) {
+  const OccupancyGrid empty(GridGeometry(0.05, {0, 0}));
+  const fs::path dir = testing::MakeTempDir("html_report_empty");
+  std::vector<std::string> written;
+  ASSERT_NO_THROW(written = WriteHtmlReport(OneMapPage(empty, "m"), dir, {}));
+  EXPECT_EQ(written, (std::vector<std::string>{"report.html"}));
+  EXPECT_FALSE(fs::exists(dir / "report_map_0.png"));
+  EXPECT_TRUE(EmbeddedData(HtmlReportText(OneMapPage(empty, "m")))
+                  .at("page")
+                  .at("maps")[0]
+                  .at("image")
+                  .is_null());
+}
+
 TEST(HtmlReport, GraphNodeSitsAtTheMapsKnownCentreInPreviewPixels) {
   // A 10 x 10 map at 0.1 m, every cell known: its centre is (0.5, 0.5) in its map frame, and
   // (1.5, 2.5) in the merged frame under T = (1, 2, 0). The merged grid's origin is (1, 2), 0.1 m
