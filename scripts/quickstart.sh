@@ -8,4 +8,4 @@ bash scripts/build.sh
 out=out/demo
 ./build/cli/fleetmerge demo --out "$out"
 echo
-echo "open $out/case/merged/merged_0_preview.png to see the merged map (colours: the robots)"
+echo "open $out/case/merged/report.html in a browser to see the merge: maps, pose graph, every pair"
