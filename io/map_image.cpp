@@ -4,7 +4,6 @@
 #include <cctype>
 #include <cmath>
 #include <fstream>
-#include <iostream>
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 #include <sstream>
@@ -97,6 +96,9 @@ MapImage ReadMapImage(const fs::path& image_path, const fs::path& yaml_path,
   const bool is_pnm = bytes.size() >= 2 && bytes[0] == 'P';  // else PNG (CheckImageHeader)
   const std::optional<PnmHeader> pnm =
       is_pnm ? ReadPnmHeader(image_path) : std::optional<PnmHeader>();
+  if (is_pnm && !pnm) {  // the file changed since CheckImageHeader read it
+    FailImage(image_path, yaml_path, "has a malformed or incomplete Netpbm (PGM) header");
+  }
   cv::Mat raw;
   try {
     raw = is_pnm ? DecodePnm(bytes, *pnm) : DecodePng(bytes);
