@@ -318,6 +318,26 @@ TEST(Ros2Db3, MessageCompressionZstdRoundTrip) {
   ExpectSameMap(dir / "extracted" / "robot3.yaml", sim / "robot3.yaml");
 }
 
+TEST(Ros2Db3, SplitBagGivesTheLastMapOfAllItsFiles) {
+  const fs::path dir = testing::MakeTempDir("ros2_db3_split");
+  const fs::path sim = SimulateFleet(dir);
+  MakeBag("db3 --split --messages 4 --map " + ShellQuote(sim / "robot1.yaml") + " --out " +
+          ShellQuote(dir / "robot1"));
+  ASSERT_EQ(
+      Fleetmerge("extract " + ShellQuote(dir / "robot1") + " --out " + ShellQuote(dir / "whole"))
+          .exit_code,
+      0);
+  ExpectSameMap(dir / "whole" / "robot1.yaml", sim / "robot1.yaml");
+  // The first file alone holds only the earlier, smaller maps (make_bags.py's growing crops).
+  const auto first = Fleetmerge("extract " + ShellQuote(dir / "robot1" / "robot1_0.db3") +
+                                " --out " + ShellQuote(dir / "first"));
+  ASSERT_EQ(first.exit_code, 0) << first.both();
+  const LoadedMap early = LoadMap(dir / "first" / "robot1.yaml");
+  const LoadedMap full = LoadMap(sim / "robot1.yaml");
+  EXPECT_LT(early.grid.width(), full.grid.width());
+  EXPECT_LT(early.grid.height(), full.grid.height());
+}
+
 // --- Job files --------------------------------------------------------------------------------
 
 TEST(BagJobFiles, EntriesNameBagsAndTheirTopics) {
