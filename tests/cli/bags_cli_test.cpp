@@ -374,11 +374,11 @@ TEST(BagJobFiles, EntriesNameBagsAndTheirTopics) {
   EXPECT_FALSE(fs::exists(dir / "out2"));
 }
 
-// Checked-in MCAP bags (make_mcap.mjs, npm's @mcap/core): the fleet of
-// `fleetmerge simulate --robots 3 --seed 3`, robot1 zstd chunks, robot2 lz4, robot3 uncompressed.
-TEST(Ros2McapFleet, CheckedInBagsMergeAndMatchTheSimulatedMaps) {
+// Checked-in MCAP bags (make_mcap_fixtures.sh: make_mcap.mjs, npm's @mcap/core) of the fleet of
+// `fleetmerge simulate --robots 3 --seed 3`, robot1 zstd chunks, robot2 lz4, robot3 uncompressed,
+// with the maps they hold and their truth in mcap_sim_seed3/maps.
+TEST(Ros2McapFleet, CheckedInBagsMergeAndMatchTheirMaps) {
   const fs::path dir = testing::MakeTempDir("ros2_mcap");
-  const fs::path sim = SimulateFleet(dir);
   const fs::path mcap = kBagsDir / "mcap_sim_seed3";
   std::string bags;
   for (int r = 1; r <= 3; ++r) {
@@ -388,11 +388,12 @@ TEST(Ros2McapFleet, CheckedInBagsMergeAndMatchTheSimulatedMaps) {
                          ShellQuote(dir / "extracted"))
                   .exit_code,
               0);
-    ExpectSameMap(dir / "extracted" / (robot + ".yaml"), sim / (robot + ".yaml"));
+    ExpectSameMap(dir / "extracted" / (robot + ".yaml"), mcap / "maps" / (robot + ".yaml"));
   }
   const auto merged = Fleetmerge("merge --quiet --out " + ShellQuote(dir / "out") + bags);
   ASSERT_EQ(merged.exit_code, 0) << merged.both();
-  ExpectAllPairsCoarse(dir / "out" / "report.json", sim / "truth.yaml");
+  ExpectAllPairsCoarse(dir / "out" / "report.json", mcap / "maps" / "truth.yaml");
+  ExpectLaunchFilesMatchReport(dir / "out");
 }
 
 // --- Map files: a resolution whose resampled grid cannot exist ------------------------------
