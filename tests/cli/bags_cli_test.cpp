@@ -267,6 +267,11 @@ TEST(RobotFolders, MapSaverLayoutMergesNamedByFolder) {
   ASSERT_EQ(pair.exit_code, 0) << pair.both();
   EXPECT_NE(pair.out.find("a: r1 ("), std::string::npos) << pair.out;
   EXPECT_NE(pair.out.find("b: r2 ("), std::string::npos) << pair.out;
+  // A map paired with itself (a sanity check) is still allowed: one name for both.
+  const std::string r1 = ShellQuote(dir / "mission" / "r1" / "map.yaml");
+  const auto self = Fleetmerge("pair " + r1 + " " + r1);
+  ASSERT_EQ(self.exit_code, 0) << self.both();
+  EXPECT_NE(self.out.find("b: map ("), std::string::npos) << self.out;
 }
 
 // --- ROS 2 ------------------------------------------------------------------------------------
