@@ -143,7 +143,10 @@ int RunPairCommand(const PairCommand& command, std::ostream& out) {
         {m.source, m.path, "",
          m.topic.empty() ? std::vector<std::string>{} : std::vector<std::string>{m.topic}});
   }
-  maps = ExpandMapInputs(both);
+  std::error_code ec;
+  const bool same =
+      std::filesystem::equivalent(maps[0].path, maps[1].path, ec) && maps[0].topic == maps[1].topic;
+  if (!same) maps = ExpandMapInputs(both);  // a map paired with itself keeps its one name
   const LoadedMap a = LoadJobMap(maps[0]);
   const LoadedMap b = LoadJobMap(maps[1]);
   CheckResampledSizes({&a, &b}, 0.0, kDefaultMaxMapCells);

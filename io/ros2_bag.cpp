@@ -24,14 +24,17 @@ Ros2Bag ReadFolder(const fs::path& folder) {
   const fs::path metadata = folder / "metadata.yaml";
   std::error_code ec;
   if (!fs::is_regular_file(metadata, ec)) {
-    std::string found;
+    std::string found;  // a file the user may have meant
     for (const auto& entry : fs::directory_iterator(folder, ec)) {
       if (IsStorageFile(entry.path())) found = entry.path().filename().string();
+      if (found.empty() && entry.path().extension() == ".yaml") {
+        found = entry.path().filename().string();
+      }
     }
-    throw Error(folder.string() + ": is a folder but not a ROS 2 bag (expected metadata.yaml " +
-                "beside .db3 or .mcap files)" +
-                (found.empty() ? std::string()
-                               : "; it holds " + found + ": give that file to read it alone"));
+    throw Error(
+        folder.string() + ": is a folder but not a ROS 2 bag (expected metadata.yaml " +
+        "beside .db3 or .mcap files)" +
+        (found.empty() ? std::string() : "; it holds " + found + ": give that file instead"));
   }
   const YamlErrors errors(metadata);
   const YAML::Node root =

@@ -267,6 +267,11 @@ TEST(RobotFolders, MapSaverLayoutMergesNamedByFolder) {
   ASSERT_EQ(pair.exit_code, 0) << pair.both();
   EXPECT_NE(pair.out.find("a: r1 ("), std::string::npos) << pair.out;
   EXPECT_NE(pair.out.find("b: r2 ("), std::string::npos) << pair.out;
+  // A map paired with itself (a sanity check) is still allowed: one name for both.
+  const std::string r1 = ShellQuote(dir / "mission" / "r1" / "map.yaml");
+  const auto self = Fleetmerge("pair " + r1 + " " + r1);
+  ASSERT_EQ(self.exit_code, 0) << self.both();
+  EXPECT_NE(self.out.find("b: map ("), std::string::npos) << self.out;
 }
 
 // --- ROS 2 ------------------------------------------------------------------------------------
@@ -318,6 +323,26 @@ TEST(Ros2Db3, MessageCompressionZstdRoundTrip) {
   ExpectSameMap(dir / "extracted" / "robot3.yaml", sim / "robot3.yaml");
 }
 
+TEST(Ros2Db3, SplitBagGivesTheLastMapOfAllItsFiles) {
+  const fs::path dir = testing::MakeTempDir("ros2_db3_split");
+  const fs::path sim = SimulateFleet(dir);
+  MakeBag("db3 --split --messages 4 --map " + ShellQuote(sim / "robot1.yaml") + " --out " +
+          ShellQuote(dir / "robot1"));
+  ASSERT_EQ(
+      Fleetmerge("extract " + ShellQuote(dir / "robot1") + " --out " + ShellQuote(dir / "whole"))
+          .exit_code,
+      0);
+  ExpectSameMap(dir / "whole" / "robot1.yaml", sim / "robot1.yaml");
+  // The first file alone holds only the earlier, smaller maps (make_bags.py's growing crops).
+  const auto first = Fleetmerge("extract " + ShellQuote(dir / "robot1" / "robot1_0.db3") +
+                                " --out " + ShellQuote(dir / "first"));
+  ASSERT_EQ(first.exit_code, 0) << first.both();
+  const LoadedMap early = LoadMap(dir / "first" / "robot1.yaml");
+  const LoadedMap full = LoadMap(sim / "robot1.yaml");
+  EXPECT_LT(early.grid.width(), full.grid.width());
+  EXPECT_LT(early.grid.height(), full.grid.height());
+}
+
 // --- Job files --------------------------------------------------------------------------------
 
 TEST(BagJobFiles, EntriesNameBagsAndTheirTopics) {
@@ -354,11 +379,11 @@ TEST(BagJobFiles, EntriesNameBagsAndTheirTopics) {
   EXPECT_FALSE(fs::exists(dir / "out2"));
 }
 
-// Checked-in MCAP bags (make_mcap.mjs, npm's @mcap/core): the fleet of
-// `fleetmerge simulate --robots 3 --seed 3`, robot1 zstd chunks, robot2 lz4, robot3 uncompressed.
-TEST(Ros2McapFleet, CheckedInBagsMergeAndMatchTheSimulatedMaps) {
+// Checked-in MCAP bags (make_mcap_fixtures.sh: make_mcap.mjs, npm's @mcap/core) of the fleet of
+// `fleetmerge simulate --robots 3 --seed 3`, robot1 zstd chunks, robot2 lz4, robot3 uncompressed,
+// with the maps they hold and their truth in mcap_sim_seed3/maps.
+TEST(Ros2McapFleet, CheckedInBagsMergeAndMatchTheirMaps) {
   const fs::path dir = testing::MakeTempDir("ros2_mcap");
-  const fs::path sim = SimulateFleet(dir);
   const fs::path mcap = kBagsDir / "mcap_sim_seed3";
   std::string bags;
   for (int r = 1; r <= 3; ++r) {
@@ -368,11 +393,12 @@ TEST(Ros2McapFleet, CheckedInBagsMergeAndMatchTheSimulatedMaps) {
                          ShellQuote(dir / "extracted"))
                   .exit_code,
               0);
-    ExpectSameMap(dir / "extracted" / (robot + ".yaml"), sim / (robot + ".yaml"));
+    ExpectSameMap(dir / "extracted" / (robot + ".yaml"), mcap / "maps" / (robot + ".yaml"));
   }
   const auto merged = Fleetmerge("merge --quiet --out " + ShellQuote(dir / "out") + bags);
   ASSERT_EQ(merged.exit_code, 0) << merged.both();
-  ExpectAllPairsCoarse(dir / "out" / "report.json", sim / "truth.yaml");
+  ExpectAllPairsCoarse(dir / "out" / "report.json", mcap / "maps" / "truth.yaml");
+  ExpectLaunchFilesMatchReport(dir / "out");
 }
 
 // --- Map files: a resolution whose resampled grid cannot exist ------------------------------

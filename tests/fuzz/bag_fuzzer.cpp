@@ -31,8 +31,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string_view message(bytes, size);
   for (bool cdr : {false, true}) {
     try {
-      const OccupancyGridMsg msg = cdr ? DecodeCdrOccupancyGrid(message, "fuzz")
-                                       : DecodeRos1OccupancyGrid(message, "fuzz");
+      const OccupancyGridMsg msg =
+          cdr ? DecodeCdrOccupancyGrid(message, "fuzz") : DecodeRos1OccupancyGrid(message, "fuzz");
       const OccupancyGrid grid = OccupancyGridFromMsg(msg, "fuzz", kMaxCells);
       if (static_cast<std::uint32_t>(grid.width()) != msg.width ||
           static_cast<std::uint32_t>(grid.height()) != msg.height) {

@@ -203,8 +203,24 @@ FAKE_HASH = "RIHS01_" + "0" * 64
 def write_db3(args, maps):
     os.makedirs(args.out, exist_ok=True)
     name = os.path.basename(os.path.normpath(args.out))
-    db_name = name + "_0.db3"
-    db_path = os.path.join(args.out, db_name)
+    events = timeline(args, maps)
+    # --split: two storage files, as `ros2 bag record --max-bag-duration` leaves them; the
+    # second holds the later half of the messages (the last map among them).
+    parts = [events[:len(events) // 2], events[len(events) // 2:]] if args.split else [events]
+    files = []
+    types = {"/chatter": "std_msgs/msg/String"}
+    for topic, _ in maps:
+        types[topic] = "nav_msgs/msg/OccupancyGrid"
+    counts = dict.fromkeys(types, 0)
+    times = []
+    for index, part in enumerate(parts):
+        db_name = "%s_%d.db3" % (name, index)
+        files.append(db_name)
+        write_db3_file(args, os.path.join(args.out, db_name), types, part, counts, times)
+    write_metadata(args, files, types, counts, times, args.distro == "jazzy")
+
+
+def write_db3_file(args, db_path, types, events, counts, times):
     if os.path.exists(db_path):
         os.remove(db_path)
     jazzy = args.distro == "jazzy"
@@ -228,9 +244,6 @@ def write_db3(args, maps):
                "INTEGER NOT NULL,data BLOB NOT NULL)")
     db.execute("CREATE INDEX timestamp_idx ON messages (timestamp ASC)")
     topics = {}
-    types = {"/chatter": "std_msgs/msg/String"}
-    for topic, _ in maps:
-        types[topic] = "nav_msgs/msg/OccupancyGrid"
     for topic, type_name in sorted(types.items()):
         row = [topic, type_name, "cdr", QOS_HUMBLE]
         if jazzy:
@@ -242,9 +255,7 @@ def write_db3(args, maps):
             db.execute("INSERT INTO message_definitions VALUES(NULL,?,?,?,?)",
                        (type_name, "ros2msg", OCCUPANCY_GRID_DEF if "Occupancy" in type_name
                         else "string data\n", FAKE_HASH))
-    counts = dict.fromkeys(types, 0)
-    times = []
-    for t, topic, grid in timeline(args, maps):
+    for t, topic, grid in events:
         data = cdr_string("robot alive") if grid is None else cdr_occupancy_grid(
             t, args.frame_id, grid)
         if args.message_zstd:  # rosbag2 --compression-mode message: each blob a zstd frame
@@ -255,10 +266,9 @@ def write_db3(args, maps):
         times.append(t)
     db.commit()
     db.close()
-    write_metadata(args, db_name, types, counts, times, jazzy)
 
 
-def write_metadata(args, db_name, types, counts, times, jazzy):
+def write_metadata(args, files, types, counts, times, jazzy):
     lines = ["rosbag2_bagfile_information:", "  version: %d" % (9 if jazzy else 5),
              "  storage_identifier: sqlite3", "  duration:",
              "    nanoseconds: %d" % (max(times) - min(times)), "  starting_time:",
@@ -275,11 +285,13 @@ def write_metadata(args, db_name, types, counts, times, jazzy):
         lines += ["      message_count: %d" % counts[topic]]
     compression = ["  compression_format: zstd", "  compression_mode: MESSAGE"] \
         if args.message_zstd else ['  compression_format: ""', '  compression_mode: ""']
-    lines += compression + ["  relative_file_paths:",
-              "    - %s" % db_name, "  files:", "    - path: %s" % db_name, "      starting_time:",
-              "        nanoseconds_since_epoch: %d" % min(times), "      duration:",
-              "        nanoseconds: %d" % (max(times) - min(times)),
-              "      message_count: %d" % len(times)]
+    lines += compression + ["  relative_file_paths:"] + ["    - %s" % f for f in files]
+    lines += ["  files:"]
+    for f in files:  # per-file times are not needed by readers; the bag's are repeated
+        lines += ["    - path: %s" % f, "      starting_time:",
+                  "        nanoseconds_since_epoch: %d" % min(times), "      duration:",
+                  "        nanoseconds: %d" % (max(times) - min(times)),
+                  "      message_count: %d" % len(times)]
     if jazzy:
         lines += ["  custom_data: ~", "  ros_distro: jazzy"]
     with open(os.path.join(args.out, "metadata.yaml"), "w") as f:
@@ -297,6 +309,7 @@ def main():
     parser.add_argument("--unindexed", action="store_true")
     parser.add_argument("--distro", choices=["humble", "jazzy"], default="humble")
     parser.add_argument("--messages", type=int, default=3)
+    parser.add_argument("--split", action="store_true", help="db3: two storage files")
     parser.add_argument("--message-zstd", action="store_true",
                         help="db3: zstd per message (rosbag2 compression mode MESSAGE)")
     parser.add_argument("--frame-id", default="map")
