@@ -9,6 +9,8 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "io/bag_maps.hpp"
+#include "io/map_inputs.hpp"
 #include "io/map_io.hpp"
 #include "io/octree_io.hpp"
 #include "pipeline/job_run.hpp"
@@ -222,7 +224,14 @@ Map LoadMap(const std::string& path) {
       JobOctree octree;
       return FromGrid(LoadOctreeMap(p, OctreeOptions{}, octree).grid, p.stem().string());
     }
-    return FromGrid(LoadMap(p, kDefaultMaxMapCells).grid, p.stem().string());
+    // A bag (or a file of a ROS 2 bag) holding one map topic, named as `merge --out` names it.
+    const std::vector<JobMap> maps = ExpandMapInputs({{p, p, "", {}}});
+    if (maps.size() != 1) {
+      throw Error(path + " holds " + std::to_string(maps.size()) +
+                  " map topics; LoadMap reads one: merge the bag (MergeFiles) or extract its "
+                  "topics (fleetmerge extract)");
+    }
+    return FromGrid(LoadJobMap(maps.front(), kDefaultMaxMapCells).grid, maps.front().name);
   });
 }
 

@@ -49,7 +49,8 @@ def _options(options):
 
 
 def load_map(path):
-    """A map_server YAML (with its PGM/PNG image) or an OctoMap octree's floor plan (.bt, .ot)."""
+    """A map_server YAML (with its PGM/PNG image), an OctoMap octree's floor plan (.bt, .ot) or a
+    ROS 1 / ROS 2 bag with one OccupancyGrid topic (its last map)."""
     return _fleetmerge.load_map(_path(path, "path"))
 
 

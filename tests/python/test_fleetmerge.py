@@ -302,3 +302,20 @@ def test_readme_ros2_conversion_runs():
     back = namespace["map_from_msg"](msg, name="run3")
     assert np.array_equal(back.data, m.data)
     assert back.origin == pytest.approx((1.5, -2.0, -2.9))
+
+
+def test_bags_load_and_pair_as_the_cli_reads_them():
+    """ROS 2 MCAP bags (written by npm's @mcap/core, tests/data/bags) read like their maps."""
+    bags = Path(__file__).resolve().parents[1] / "data" / "bags" / "mcap_sim_seed3"
+    from_bag = fleetmerge.load_map(bags / "robot1")
+    from_file = fleetmerge.load_map(bags / "maps" / "robot1.yaml")
+    assert from_bag.name == "robot1"
+    assert np.array_equal(from_bag.data, from_file.data)
+    assert from_bag.origin == pytest.approx(from_file.origin)
+    assert from_bag.resolution == from_file.resolution
+    expected = json.loads(cli("pair", "--json", str(bags / "robot1"), str(bags / "robot2")).stdout)
+    got = fleetmerge.pair(bags / "robot1", bags / "robot2")
+    assert [(h.x, h.y, h.yaw, h.omega) for h in got] == \
+        [(e["x"], e["y"], e["yaw"], e["omega"]) for e in expected["hypotheses"]]
+    with pytest.raises(RuntimeError, match="not a ROS 2 bag|no such|does not exist"):
+        fleetmerge.load_map(bags)  # a folder of bags is not a bag

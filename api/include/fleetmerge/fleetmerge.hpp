@@ -70,8 +70,10 @@ class Map {
   std::string name_;
 };
 
-// Reads a map_server YAML (with its PGM/PNG image) or an OctoMap octree (.bt, .ot: its 2-D floor
-// plan, as `fleetmerge merge` uses it). Throws std::runtime_error naming the file on bad input.
+// Reads a map_server YAML (with its PGM/PNG image), an OctoMap octree (.bt, .ot: its 2-D floor
+// plan, as `fleetmerge merge` uses it) or a ROS 1 / ROS 2 bag with one OccupancyGrid topic (its
+// last map). Named as `fleetmerge merge --out` names it (the file stem). Throws
+// std::runtime_error naming the file on bad input.
 Map LoadMap(const std::string& path);
 
 // Writes `yaml_path` and a trinary PGM beside it (same stem), as map_server's map_saver does,
