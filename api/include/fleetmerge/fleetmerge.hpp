@@ -82,8 +82,9 @@ void SaveMap(const Map& map, const std::string& yaml_path);
 
 // Parameters of Pair and Merge. Defaults are the command line's.
 struct Options {
-  int hypotheses = 4;               // Pair: hypotheses returned (`fleetmerge pair -n`)
-  double resolution = 0.0;          // Merge: compare and composite at this (0: the finest map's)
+  int hypotheses = 4;       // per pair: Pair returns them (`pair -n`), Merge keeps them (job key
+                            // hypotheses_per_pair) for its edges and report
+  double resolution = 0.0;  // Merge: compare and composite at this (0: the finest map's)
   double omega_threshold = 0.9;     // Merge: best omega a pair needs to become an edge (Eq. 1)
   int min_overlap_cells = 5000;     // Merge: cells known in both maps an edge needs
   double min_wall_agreement = 0.8;  // Merge: symmetric wall agreement an edge needs
