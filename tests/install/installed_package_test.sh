@@ -64,6 +64,32 @@ assert len(lines) == len(report["maps"]) == 3
 PY
 echo "merge: the consumer's placements equal its report.json"
 
+# The README's C++ example, as printed there, compiled against the install and run.
+readme=$tmp/readme_example
+mkdir -p "$readme"
+/usr/bin/python3 - "$source/README.md" "$readme/main.cpp" <<'PY'
+import sys
+text = open(sys.argv[1]).read()
+code = text.split("```cpp\n#include <fleetmerge/fleetmerge.hpp>", 1)[1].split("```", 1)[0]
+open(sys.argv[2], "w").write("#include <fleetmerge/fleetmerge.hpp>" + code)
+PY
+cat > "$readme/CMakeLists.txt" <<'CMAKE'
+cmake_minimum_required(VERSION 3.16)
+project(readme_example LANGUAGES CXX)
+find_package(fleetmerge CONFIG REQUIRED)
+add_executable(example main.cpp)
+target_link_libraries(example PRIVATE fleetmerge::fleetmerge)
+CMAKE
+cmake -S "$readme" -B "$readme/build" -DCMAKE_PREFIX_PATH="$prefix" > "$tmp/readme_configure.log"
+cmake --build "$readme/build" > "$tmp/readme_build.log"
+"$readme/build/example" "$maps/robotis_corridor_run1.yaml" "$maps/robotis_corridor_run2.yaml" \
+  "$maps/robotis_corridor_run3.yaml" "$tmp/readme_merge" > "$tmp/readme_example.txt"
+cat "$tmp/readme_example.txt"
+# The three real runs of one corridor form one component, as `fleetmerge merge` finds them.
+[ "$(grep -c ': component 0 at' "$tmp/readme_example.txt")" -eq 3 ]
+[ -f "$tmp/readme_merge/report.json" ] && [ -f "$tmp/readme_merge/merged_0.yaml" ]
+echo "README example: compiled against the install, 3 maps in one component"
+
 # The Python module from the install, in Debian's layout.
 site=$prefix/lib/python3/dist-packages
 PYTHONPATH=$site /usr/bin/python3 -c "import fleetmerge; print('import fleetmerge', fleetmerge.__version__, 'from', fleetmerge.__file__)"
