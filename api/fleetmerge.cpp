@@ -128,20 +128,6 @@ FleetOptions ToFleetOptions(const Options& o) {
   return f;
 }
 
-// std::runtime_error with the command's message for everything fleetmerge itself throws.
-template <typename F>
-auto Translated(F&& f) -> decltype(f()) {
-  try {
-    return f();
-  } catch (const std::invalid_argument&) {
-    throw;
-  } catch (const Error& e) {
-    throw std::runtime_error(e.what());
-  } catch (const std::filesystem::filesystem_error& e) {
-    throw std::runtime_error(e.what());
-  }
-}
-
 MergeResult ToResult(const Job& job, const JobOutcome& outcome) {
   const FleetResult& r = outcome.result;
   MergeResult out;
@@ -218,38 +204,34 @@ std::int8_t Map::at(int i, int j) const {
 }
 
 Map LoadMap(const std::string& path) {
-  return Translated([&] {
-    const std::filesystem::path p(path);
-    if (IsOctreePath(p)) {
-      JobOctree octree;
-      return FromGrid(LoadOctreeMap(p, OctreeOptions{}, octree).grid, p.stem().string());
-    }
-    // A bag (or a file of a ROS 2 bag) holding one map topic, named as `merge --out` names it.
-    const std::vector<JobMap> maps = ExpandMapInputs({{p, p, "", {}}});
-    if (maps.size() != 1) {
-      throw Error(path + " holds " + std::to_string(maps.size()) +
-                  " map topics; LoadMap reads one: merge the bag (MergeFiles) or extract its "
-                  "topics (fleetmerge extract)");
-    }
-    return FromGrid(LoadJobMap(maps.front(), kDefaultMaxMapCells).grid, maps.front().name);
-  });
+  const std::filesystem::path p(path);
+  if (IsOctreePath(p)) {
+    JobOctree octree;
+    return FromGrid(LoadOctreeMap(p, OctreeOptions{}, octree).grid, p.stem().string());
+  }
+  // A bag (or a file of a ROS 2 bag) holding one map topic, named as `merge --out` names it.
+  const std::vector<JobMap> maps = ExpandMapInputs({{p, p, "", {}}});
+  if (maps.size() != 1) {
+    throw Error(path + " holds " + std::to_string(maps.size()) +
+                " map topics; LoadMap reads one: merge the bag (MergeFiles) or extract its "
+                "topics (fleetmerge extract)");
+  }
+  return FromGrid(LoadJobMap(maps.front(), kDefaultMaxMapCells).grid, maps.front().name);
 }
 
 void SaveMap(const Map& map, const std::string& yaml_path) {
   const OccupancyGrid grid = ToGrid(map);
-  Translated([&] { SaveMap(grid, std::filesystem::path(yaml_path), {}); });
+  SaveMap(grid, std::filesystem::path(yaml_path), {});
 }
 
 std::vector<Hypothesis> Pair(const Map& a, const Map& b, const Options& options) {
   const PairOptions pair_options = ToFleetOptions(options).pair;
   const OccupancyGrid grid_a = ToGrid(a), grid_b = ToGrid(b);
-  return Translated([&] {
-    std::vector<Hypothesis> out;
-    for (const PairHypothesis& h : MergePair(grid_a, grid_b, pair_options).hypotheses) {
-      out.push_back({h.T_a_b.x_m(), h.T_a_b.y_m(), h.T_a_b.yaw_rad(), h.omega});
-    }
-    return out;
-  });
+  std::vector<Hypothesis> out;
+  for (const PairHypothesis& h : MergePair(grid_a, grid_b, pair_options).hypotheses) {
+    out.push_back({h.T_a_b.x_m(), h.T_a_b.y_m(), h.T_a_b.yaw_rad(), h.omega});
+  }
+  return out;
 }
 
 MergeResult Merge(const std::vector<Map>& maps, const Options& options,
@@ -267,7 +249,9 @@ MergeResult Merge(const std::vector<Map>& maps, const Options& options,
     for (const JobMap& earlier : job.maps) {
       Require(earlier.name != name, "two maps are named '" + name + "' (names must be distinct)");
     }
-    job.maps.push_back({name, {}, {}});
+    JobMap job_map;  // in memory: no source file, no path
+    job_map.name = name;
+    job.maps.push_back(job_map);
     LoadedMap l;
     l.grid = ToGrid(maps[m]);
     l.metadata.resolution_m = maps[m].resolution();
@@ -277,25 +261,20 @@ MergeResult Merge(const std::vector<Map>& maps, const Options& options,
   bool found = false;
   for (const JobMap& m : job.maps) found = found || m.name == job.reference;
   Require(found, "reference '" + job.reference + "' is not one of the maps' names");
-  return Translated([&] {
-    JobRunOptions run;
-    run.write = !out_dir.empty();
-    const JobOutcome outcome = RunLoadedJob(job, loaded, {}, MillisecondsSince(start), run);
-    return ToResult(job, outcome);
-  });
+  JobRunOptions run;
+  run.write = !out_dir.empty();
+  return ToResult(job, RunLoadedJob(job, loaded, {}, MillisecondsSince(start), run));
 }
 
 MergeResult MergeFiles(const std::vector<std::string>& paths, const Options& options,
                        const std::string& out_dir) {
   Require(!paths.empty(), "merge needs at least one map");
   const FleetOptions fleet_options = ToFleetOptions(options);
-  return Translated([&] {
-    const std::vector<std::filesystem::path> files(paths.begin(), paths.end());
-    const Job job = MapListJob(files, out_dir, Reference(options), fleet_options);
-    JobRunOptions run;
-    run.write = !out_dir.empty();
-    return ToResult(job, RunJob(job, run));
-  });
+  const std::vector<std::filesystem::path> files(paths.begin(), paths.end());
+  const Job job = MapListJob(files, out_dir, Reference(options), fleet_options);
+  JobRunOptions run;
+  run.write = !out_dir.empty();
+  return ToResult(job, RunJob(job, run));
 }
 
 }  // namespace fleetmerge

@@ -22,31 +22,30 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Writes the merged maps and previews into `dir` (the staging folder); returns each component's
-// merged map file name ("" for an unmerged one) and appends every file written to `written`.
-std::vector<std::string> WriteOutputs(const std::filesystem::path& dir, const FleetResult& result,
-                                      const std::vector<std::filesystem::path>& protect,
-                                      std::vector<std::string>& written) {
-  std::vector<std::string> files(result.components.size());
-  for (std::size_t c = 0; c < result.components.size(); ++c) {
-    const FleetComponent& component = result.components[c];
-    if (!component.merged) continue;
-    const std::string stem = "merged_" + std::to_string(c);
-    files[c] = stem + ".yaml";
-    SaveMap(*component.merged, dir / files[c], protect);
-    std::vector<CompositeInput> inputs;
-    for (int m : component.maps) inputs.push_back({&result.maps[m], result.T_component_map[m]});
-    SaveImage(ColourPreview(inputs, *component.merged), dir / (stem + "_preview.png"), protect);
-    written.insert(written.end(), {stem + ".yaml", stem + ".pgm", stem + "_preview.png"});
-  }
-  return files;
-}
-
-// The merged files' names when nothing is written: the names a written set would have.
+// Each component's merged map file name, "" for an unmerged one: the names a written set has.
 std::vector<std::string> MergedFileNames(const FleetResult& result) {
   std::vector<std::string> files(result.components.size());
   for (std::size_t c = 0; c < result.components.size(); ++c) {
     if (result.components[c].merged) files[c] = "merged_" + std::to_string(c) + ".yaml";
+  }
+  return files;
+}
+
+// Writes the merged maps and previews into `dir` (the staging folder); returns each component's
+// merged map file name (MergedFileNames) and appends every file written to `written`.
+std::vector<std::string> WriteOutputs(const std::filesystem::path& dir, const FleetResult& result,
+                                      const std::vector<std::filesystem::path>& protect,
+                                      std::vector<std::string>& written) {
+  const std::vector<std::string> files = MergedFileNames(result);
+  for (std::size_t c = 0; c < result.components.size(); ++c) {
+    const FleetComponent& component = result.components[c];
+    if (!component.merged) continue;
+    const std::string stem = "merged_" + std::to_string(c);
+    SaveMap(*component.merged, dir / files[c], protect);
+    std::vector<CompositeInput> inputs;
+    for (int m : component.maps) inputs.push_back({&result.maps[m], result.T_component_map[m]});
+    SaveImage(ColourPreview(inputs, *component.merged), dir / (stem + "_preview.png"), protect);
+    written.insert(written.end(), {files[c], stem + ".pgm", stem + "_preview.png"});
   }
   return files;
 }
