@@ -102,18 +102,22 @@ std::string Ros2TransformsLaunch(const Job& job, const FleetResult& result) {
   return out;
 }
 
+// Text for inside an XML comment, where "--" may not appear (names are the user's).
+std::string XmlCommentText(std::string text) {
+  for (std::size_t at; (at = text.find("--")) != std::string::npos;) text[at + 1] = '_';
+  return text;
+}
+
 std::string Ros1TransformsLaunch(const Job& job, const FleetResult& result) {
-  std::string job_name = job.name;  // "--" may not appear in an XML comment
-  for (std::size_t at; (at = job_name.find("--")) != std::string::npos;) job_name[at + 1] = '_';
   std::vector<std::string> unmerged;
   const std::vector<Transform> transforms = Transforms(job, result, unmerged);
   std::string out =
       "<?xml version=\"1.0\"?>\n<!-- fleetmerge: static transforms from the merged map frame "
       "to each robot's map frame (job '" +
-      job.name + "'). ROS 1: roslaunch " + kRos1LaunchFile +
+      XmlCommentText(job.name) + "'). ROS 1: roslaunch " + kRos1LaunchFile +
       "\n     Serve merged_<c>.yaml with map_server in the parent frame (_frame_id). -->\n";
   for (const auto& name : unmerged)
-    out += "<!-- map '" + name + "' was not merged: no transform -->\n";
+    out += "<!-- map '" + XmlCommentText(name) + "' was not merged: no transform -->\n";
   out += "<launch>\n";
   for (const Transform& t : transforms) {
     // tf2_ros static_transform_publisher: x y z yaw pitch roll frame_id child_frame_id

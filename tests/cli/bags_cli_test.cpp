@@ -355,7 +355,8 @@ TEST(BagJobFiles, EntriesNameBagsAndTheirTopics) {
   testing::WriteFile(dir / "job.yaml",
                      "maps:\n  - {path: fleet.bag, topic: robot2/map, name: second}\n"
                      "  - {path: fleet.bag, topic: /robot1/map}\n  - r3\noutput: out\n"
-                     "reference: second\ntf_parent: world\ntf_child: '{name}_map'\n");
+                     "reference: second\ntf_parent: world\ntf_child: '{name}_map'\n"
+                     "name: night--run\n");
   const auto run = Fleetmerge("merge --quiet " + ShellQuote(dir / "job.yaml"));
   ASSERT_EQ(run.exit_code, 0) << run.both();
   const json report = ReadJson(dir / "out" / "report.json");
@@ -368,6 +369,16 @@ TEST(BagJobFiles, EntriesNameBagsAndTheirTopics) {
   const std::string launch = testing::ReadFile(dir / "out" / "transforms.launch.yaml");
   EXPECT_NE(launch.find("--frame-id world --child-frame-id second_map"), std::string::npos)
       << launch;
+  // The job's name goes into the ROS 1 file's XML comment, where "--" may not appear.
+  const std::string xml = testing::ReadFile(dir / "out" / "transforms.launch");
+  const std::regex comment_re("<!--([\\s\\S]*?)-->");
+  int comments = 0;
+  for (auto it = std::sregex_iterator(xml.begin(), xml.end(), comment_re);
+       it != std::sregex_iterator(); ++it, ++comments) {
+    EXPECT_EQ((*it)[1].str().find("--"), std::string::npos) << xml;
+  }
+  EXPECT_GE(comments, 1) << xml;
+  EXPECT_NE(xml.find("night-_run"), std::string::npos) << xml;
   // A name for a bag of several map topics is refused, naming the entry's line.
   testing::WriteFile(dir / "bad.yaml",
                      "maps:\n  - {path: fleet.bag, name: x}\n  - r3\n"
