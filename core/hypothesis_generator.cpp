@@ -84,16 +84,8 @@ std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapF
   const RowSpans& b_spans = fb.known_spans;
   std::vector<CellHypothesis> candidates;
   const bool sampled = b_spectra_points.size() != b_points.size();
-  for (const double yaw : RotationCandidates(hs_a, hs_b, options.rotation_peaks)) {
-    const auto b_rotated = RotatePoints(b_spectra_points, yaw);
-    std::vector<TranslationCandidate> translations;
-    if (correlation) {
-      const auto b_walls = sampled ? RotatePoints(b_points, yaw) : std::vector<Eigen::Vector2f>{};
-      translations = correlation->Find(b_rotated, sampled ? b_walls : b_rotated,
-                                       RotatePoints(b_free_points, yaw));
-    } else {
-      translations = spectra->Find(b_rotated);
-    }
+  const auto add_candidates = [&](const std::vector<TranslationCandidate>& translations,
+                                  double yaw) {
     for (const auto& t : translations) {
       const Pose2 T_ga_gb(t.t_cells, yaw);
       // Ranking pass on every other row and column: 4x cheaper, same order in practice (the
@@ -101,6 +93,23 @@ std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapF
       const Agreement agreement = CountAgreement(a, b, T_ga_gb, 2, &b_spans);
       candidates.push_back(
           {T_ga_gb, agreement.omega(), 4 * (agreement.agree + agreement.disagree)});
+    }
+  };
+  // Rotation candidates come as (psi, psi + pi) pairs; the correlation search serves both
+  // from one set of forward transforms (CorrelationTranslation::FindWithHalfTurn).
+  const std::vector<double> yaws = RotationCandidates(hs_a, hs_b, options.rotation_peaks);
+  for (std::size_t k = 0; k + 1 < yaws.size(); k += 2) {
+    const double yaw = yaws[k], yaw_half_turn = yaws[k + 1];
+    const auto b_rotated = RotatePoints(b_spectra_points, yaw);
+    if (correlation) {
+      const auto b_walls = sampled ? RotatePoints(b_points, yaw) : std::vector<Eigen::Vector2f>{};
+      const auto found = correlation->FindWithHalfTurn(b_rotated, sampled ? b_walls : b_rotated,
+                                                       RotatePoints(b_free_points, yaw));
+      add_candidates(found[0], yaw);
+      add_candidates(found[1], yaw_half_turn);
+    } else {
+      add_candidates(spectra->Find(b_rotated), yaw);
+      add_candidates(spectra->Find(RotatePoints(b_spectra_points, yaw_half_turn)), yaw_half_turn);
     }
   }
   SortHypotheses(candidates, options.min_overlap_cells);

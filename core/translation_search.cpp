@@ -89,10 +89,9 @@ CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, double b_
                   static_cast<int>(std::ceil(b_extent_cells / pooling_)) + 2),
       correlator_(FixedLayers(a, pooling_, options.free_penalty), max_b_size_) {}
 
-std::vector<TranslationCandidate> CorrelationTranslation::Find(
+CorrelationTranslation::BLayers CorrelationTranslation::RasterizeB(
     const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
-    const std::vector<Eigen::Vector2f>& free) {
-  if (scored_walls.empty() || walls.empty()) return {};
+    const std::vector<Eigen::Vector2f>& free) const {
   Eigen::Vector2f q_min = walls.front(), q_max = walls.front();
   for (const auto* points : {&scored_walls, &walls, &free}) {
     for (const auto& q : *points) {
@@ -113,14 +112,50 @@ std::vector<TranslationCandidate> CorrelationTranslation::Find(
   };
   const CoarseLayers b_layers = OpenSpaceAround(rasterize(walls), rasterize(free));
   // b's scored walls against a's score layer, minus a's walls on b's open space.
-  const cv::Mat1f surface = correlator_.CorrelateSum(
-      {rasterize(scored_walls), static_cast<cv::Mat1f>(-options_.free_penalty * b_layers.open)});
+  return {{&scored_walls == &walls ? b_layers.walls : rasterize(scored_walls),
+           static_cast<cv::Mat1f>(-options_.free_penalty * b_layers.open)},
+          q_min};
+}
+
+std::vector<TranslationCandidate> CorrelationTranslation::Find(
+    const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
+    const std::vector<Eigen::Vector2f>& free) {
+  if (scored_walls.empty() || walls.empty()) return {};
+  const BLayers b = RasterizeB(scored_walls, walls, free);
+  const cv::Mat1f surface = correlator_.CorrelateSum(b.layers);
+  const int w = b.layers.front().cols, h = b.layers.front().rows;
   // b pixel u covers q - q_min in [p u, p u + p); shifted by d it meets a pixel u + d, which
   // covers a cells [p (u + d), ...): so q + t lies in a with t = p d - q_min.
   std::vector<TranslationCandidate> out = SurfacePeaks(surface, options_.candidates);
   for (auto& c : out) {
     const Eigen::Vector2d d(c.t_cells.x() - (w - 1), c.t_cells.y() - (h - 1));
-    c.t_cells = pooling_ * d - q_min.cast<double>();
+    c.t_cells = pooling_ * d - b.q_min.cast<double>();
+  }
+  return out;
+}
+
+std::array<std::vector<TranslationCandidate>, 2> CorrelationTranslation::FindWithHalfTurn(
+    const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
+    const std::vector<Eigen::Vector2f>& free) {
+  if (scored_walls.empty() || walls.empty()) return {};
+  const BLayers b = RasterizeB(scored_walls, walls, free);
+  cv::Mat1f surface, surface_half_turn;
+  correlator_.CorrelateSumAndHalfTurn(b.layers, &surface, &surface_half_turn);
+  const int w = b.layers.front().cols, h = b.layers.front().rows;
+  std::array<std::vector<TranslationCandidate>, 2> out = {
+      SurfacePeaks(surface, options_.candidates),
+      SurfacePeaks(surface_half_turn, options_.candidates)};
+  for (auto& c : out[0]) {  // as in Find
+    const Eigen::Vector2d d(c.t_cells.x() - (w - 1), c.t_cells.y() - (h - 1));
+    c.t_cells = pooling_ * d - b.q_min.cast<double>();
+  }
+  // The flipped image's pixel u' = w - 1 - u holds the turned points -q with q in b's pixel u:
+  // -q lies in (A + p u', A + p u' + p] with A = -q_min - p (w, h), the flipped image's anchor,
+  // so t = p d - A as above.
+  const Eigen::Vector2d anchor = -b.q_min.cast<double>() - pooling_ * Eigen::Vector2d(w, h);
+  for (auto& c : out[1]) {
+    const Eigen::Vector2d d(c.t_cells.x() - (w - 1), c.t_cells.y() - (h - 1));
+    c.t_cells = pooling_ * d - anchor;
   }
   return out;
 }

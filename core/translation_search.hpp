@@ -14,6 +14,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "core/correlation_2d.hpp"
@@ -53,6 +54,14 @@ class CorrelationTranslation {
   std::vector<TranslationCandidate> Find(const std::vector<Eigen::Vector2f>& scored_walls,
                                          const std::vector<Eigen::Vector2f>& walls,
                                          const std::vector<Eigen::Vector2f>& free);
+  // Find for the points as given (result[0]) and turned by a further half turn, q -> -q
+  // (result[1]): the Hough spectrum cannot tell psi from psi + pi (Section III-A), so both are
+  // searched, and the half-turned images are the given ones flipped, which the correlator
+  // serves from the same forward transforms. Pass one vector as scored_walls and walls when
+  // every wall is scored.
+  std::array<std::vector<TranslationCandidate>, 2> FindWithHalfTurn(
+      const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
+      const std::vector<Eigen::Vector2f>& free);
   int pooling() const { return pooling_; }
 
  private:
@@ -62,6 +71,15 @@ class CorrelationTranslation {
   // Layers of a: score for b's walls (blurred walls - penalty * open space), a's walls (against
   // b's open space).
   FixedImageCorrelator correlator_;
+
+  // b's layers (scored walls, -penalty * open space) on the coarse grid anchored at q_min.
+  struct BLayers {
+    std::vector<cv::Mat1f> layers;
+    Eigen::Vector2f q_min;
+  };
+  BLayers RasterizeB(const std::vector<Eigen::Vector2f>& scored_walls,
+                     const std::vector<Eigen::Vector2f>& walls,
+                     const std::vector<Eigen::Vector2f>& free) const;
 };
 
 class XySpectraTranslation {
