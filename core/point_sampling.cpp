@@ -16,6 +16,14 @@ std::vector<Eigen::Vector2f> OccupiedCellCenters(const OccupancyGrid& grid) {
 std::vector<Eigen::Vector2f> CellCenters(const OccupancyGrid& grid, CellState state) {
   std::vector<Eigen::Vector2f> points;
   const auto wanted = static_cast<std::uint8_t>(state);
+  // Counted first: free cells run to 10^5-10^6, and growing the vector by doubling moved them
+  // ~20 times.
+  std::size_t count = 0;
+  for (int j = 0; j < grid.height(); ++j) {
+    const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
+    for (int i = 0; i < grid.width(); ++i) count += row[i] == wanted;
+  }
+  points.reserve(count);
   for (int j = 0; j < grid.height(); ++j) {
     const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
     for (int i = 0; i < grid.width(); ++i) {
