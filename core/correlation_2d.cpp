@@ -51,13 +51,13 @@ cv::Size FixedImageCorrelator::TransformB(const std::vector<cv::Mat1f>& b_layers
   return b_size;
 }
 
-void FixedImageCorrelator::InverseOfProducts(bool conjugate_b) {
+void FixedImageCorrelator::InverseOfProducts(bool conjugate_b, int output_rows) {
   for (std::size_t k = 0; k < b_spectra_.size(); ++k) {
     // conj(B) in the product: correlation rather than convolution.
     cv::mulSpectrums(a_spectra_[k], b_spectra_[k], k == 0 ? sum_ : product_, 0, conjugate_b);
     if (k > 0) sum_ += product_;
   }
-  cv::idft(sum_, circular_, cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
+  cv::idft(sum_, circular_, cv::DFT_REAL_OUTPUT | cv::DFT_SCALE, output_rows);
 }
 
 cv::Mat1f FixedImageCorrelator::CorrelateSum(const std::vector<cv::Mat1f>& b_layers) {
@@ -82,7 +82,8 @@ cv::Mat1f FixedImageCorrelator::CorrelateSum(const std::vector<cv::Mat1f>& b_lay
 void FixedImageCorrelator::CorrelateSumAndHalfTurn(const std::vector<cv::Mat1f>& b_layers,
                                                    cv::Mat1f* r, cv::Mat1f* r_half_turn) {
   *r = CorrelateSum(b_layers);  // leaves the B spectra in b_spectra_
-  InverseOfProducts(/*conjugate_b=*/false);
+  // The convolution is read from its first rows only, so only those are transformed back.
+  InverseOfProducts(/*conjugate_b=*/false, r->rows);
   // R(A, B')(dx, dy) = sum A(x + dx, y + dy) B(w - 1 - x, h - 1 - y) = (A * B)(dx + w - 1,
   // dy + h - 1): Correlate's element (row, col) is the convolution's (row, col), no wrap-around
   // because row < A.rows + h - 1 <= N.

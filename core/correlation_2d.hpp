@@ -49,8 +49,8 @@ class FixedImageCorrelator {
   // Forward transforms of the B layers into b_spectra_; returns their common size.
   cv::Size TransformB(const std::vector<cv::Mat1f>& b_layers);
   // sum_k A_k conj(B_k) (correlation) or sum_k A_k B_k (convolution), inverse-transformed into
-  // circular_.
-  void InverseOfProducts(bool conjugate_b);
+  // circular_; output_rows > 0: only its first output_rows rows are needed.
+  void InverseOfProducts(bool conjugate_b, int output_rows = 0);
 
   // Work buffers (so one correlator serves one thread).
   cv::Mat1f padded_, circular_;
