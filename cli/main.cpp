@@ -1,6 +1,4 @@
 // The `fleetmerge` command line: subcommands over the pipeline library.
-#include <malloc.h>
-
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <string>
@@ -13,23 +11,9 @@
 #include "cli/extract_command.hpp"
 #include "cli/merge_command.hpp"
 #include "cli/pair_command.hpp"
+#include "cli/process_memory.hpp"
 #include "cli/simulate_command.hpp"
 #include "core/error.hpp"
-
-namespace {
-
-// Every pair allocates and frees buffers of 0.2-2 MB (FFT work space inside OpenCV's dft,
-// correlation surfaces, rotated point sets). glibc serves such blocks with mmap or returns them
-// to the kernel as soon as the heap's top is free, so each one comes back as fresh pages and
-// page faults were 17 % of a pair's hypothesis search (perf). A batch process keeps them:
-// blocks up to 32 MiB from the heap, and no trimming below 1 GiB of free heap. Peak memory is
-// unchanged (the memory is reused, not added).
-void KeepFreedMemoryForReuse() {
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   using namespace fleetmerge;

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "cli/merge_command.hpp"
+#include "cli/process_memory.hpp"
 #include "io/map_io.hpp"
 #include "job/job.hpp"
 #include "sim/ground_truth_pair.hpp"
@@ -41,7 +42,7 @@ const Job& EightMapJob() {
     for (std::size_t m = 0; m < fleet.maps.size(); ++m) {
       const auto path = dir / ("robot_" + std::to_string(m) + ".yaml");
       SaveMap(fleet.maps[m], path);
-      j.maps.push_back({path.stem().string(), path, path});
+      j.maps.push_back({path.stem().string(), path, path, /*topic=*/""});
       std::fprintf(stderr, "robot_%zu: %d x %d cells\n", m, fleet.maps[m].width(),
                    fleet.maps[m].height());
     }
@@ -65,4 +66,12 @@ BENCHMARK(BM_MergeEightMaps)->Arg(2)->Arg(1)->Unit(benchmark::kMillisecond)->Use
 }  // namespace
 }  // namespace fleetmerge
 
-BENCHMARK_MAIN();
+// As `fleetmerge merge` runs: the executable's allocator settings (cli/process_memory.hpp).
+int main(int argc, char** argv) {
+  fleetmerge::KeepFreedMemoryForReuse();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -6,9 +6,6 @@
 // With FLEETMERGE_BASELINE_EXE=/path/to/older/fleetmerge the same benchmarks also run that
 // executable, interleaved, for a before/after comparison in one run.
 #include <benchmark/benchmark.h>
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 
 #include <cstdlib>
 #include <string>
@@ -16,9 +13,8 @@
 
 #include "io/map_io.hpp"
 #include "tests/benchmarks/bench_pair.hpp"
+#include "tests/benchmarks/child_process.hpp"
 #include "tests/support/shared_data.hpp"
-
-extern char** environ;
 
 namespace fleetmerge {
 namespace {
@@ -35,29 +31,11 @@ const std::vector<std::string>& PairFiles() {
   return files;
 }
 
-// Runs `argv` with stdout and stderr on /dev/null; false unless it exits with 0.
-bool Run(const std::vector<std::string>& argv) {
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int error = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0) return false;
-  int status = 0;
-  if (waitpid(pid, &status, 0) != pid) return false;
-  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
-}
-
 void BM_Process(benchmark::State& state, std::vector<std::string> argv) {
   if (argv.size() > 1 && argv[1] == "pair")
     argv.insert(argv.end(), PairFiles().begin(), PairFiles().end());
   for (auto _ : state) {
-    if (!Run(argv)) state.SkipWithError(("failed: " + argv[0]).c_str());
+    if (!RunChild(argv).ok) state.SkipWithError(("failed: " + argv[0]).c_str());
   }
 }
 
