@@ -3,6 +3,9 @@
 # the held-out check behind docs/accuracy.md's "Accuracy suite" numbers. Needs a build
 # (scripts/build.sh) and ../shared/data/maps. Usage: scripts/heldout_accuracy.sh [OUT_DIR]
 # Prints one line per case (pairs, coarse, fine, false merges) and the totals.
+# HELDOUT_SEEDS_A / HELDOUT_SEEDS_B replace the two seed lists (default "11 12" and
+# "21 22 23 24"): other seeds give a fresh set of the same kinds of cases, for a choice made while
+# looking at these.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 fleetmerge=./build/cli/fleetmerge
@@ -29,7 +32,7 @@ EOF
 }
 
 {
-  for seed in 11 12; do
+  for seed in ${HELDOUT_SEEDS_A:-11 12}; do
     run_case "gdc_$seed" --building "$maps/gdc_floor1_full.yaml" --robots 5 --seed $seed
     run_case "csail_$seed" --building "$maps/mit_csail.yaml" --robots 5 --seed $seed
     run_case "stata_$seed" --building "$maps/stata_basement.yaml" --robots 5 --seed $seed
@@ -37,7 +40,7 @@ EOF
     run_case "intel_$seed" --building "$maps/intel_lab.yaml" --robots 5 --seed $seed
     run_case "office_little_$seed" --robots 5 --seed $seed --little-overlap
   done
-  for seed in 21 22 23 24; do
+  for seed in ${HELDOUT_SEEDS_B:-21 22 23 24}; do
     run_case "gdc_$seed" --building "$maps/gdc_floor1_full.yaml" --robots 5 --seed $seed
     run_case "csail_$seed" --building "$maps/mit_csail.yaml" --robots 5 --seed $seed
     run_case "stata_foreign_$seed" --building "$maps/stata_basement.yaml" --robots 4 \
