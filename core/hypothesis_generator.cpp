@@ -124,8 +124,8 @@ std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapF
     const double yaw = yaws[k], yaw_half_turn = yaws[k + 1];
     if (correlation) {
       const RotatedB& r = rotated[k / 2];
-      const auto found = correlation->FindWithHalfTurn(
-          r.scored_walls, sampled ? r.walls : r.scored_walls, r.free);
+      const auto found =
+          correlation->FindWithHalfTurn(r.scored_walls, sampled ? r.walls : r.scored_walls, r.free);
       add_candidates(found[0], yaw);
       add_candidates(found[1], yaw_half_turn);
     } else {

@@ -145,18 +145,17 @@ int CorrelationPooling(const OccupancyGrid& a, const OccupancyGrid& b,
 
 cv::Size CorrelationTranslation::RasterSize(const std::vector<Eigen::Vector2f>& scored_walls,
                                             const std::vector<Eigen::Vector2f>& walls,
-                                            const std::vector<Eigen::Vector2f>& free,
-                                            int pooling) {
+                                            const std::vector<Eigen::Vector2f>& free, int pooling) {
   if (walls.empty()) return cv::Size(1, 1);
   return RasterSizeOf(BoundingBox(scored_walls, walls, free), pooling);
 }
 
 CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, double b_extent_cells,
                                                const TranslationOptions& options)
-    : CorrelationTranslation(a, PoolingFor(a, b_extent_cells, options.coarse_max_side),
-                             ImageBound(b_extent_cells,
-                                        PoolingFor(a, b_extent_cells, options.coarse_max_side)),
-                             options) {}
+    : CorrelationTranslation(
+          a, PoolingFor(a, b_extent_cells, options.coarse_max_side),
+          ImageBound(b_extent_cells, PoolingFor(a, b_extent_cells, options.coarse_max_side)),
+          options) {}
 
 CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, int pooling,
                                                cv::Size max_b_pixels,

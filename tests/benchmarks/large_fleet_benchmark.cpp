@@ -35,8 +35,8 @@ std::string JobFile(const FleetCase& c) {
   if (it != jobs.end()) return it->second;
   std::string job;
   if (const auto maps = testing::SharedMapsDir()) {
-    const auto dir = testing::MakeTempDir("large_fleet_benchmark") /
-                     ("aces" + std::to_string(c.robots));
+    const auto dir =
+        testing::MakeTempDir("large_fleet_benchmark") / ("aces" + std::to_string(c.robots));
     std::vector<std::string> argv = {FLEETMERGE_EXE,
                                      "simulate",
                                      dir.string(),
@@ -73,7 +73,8 @@ void BM_Merge(benchmark::State& state, std::string exe, FleetCase c) {
 }
 
 void RegisterFor(const std::string& label, const std::string& exe) {
-  for (const FleetCase& c : {FleetCase{8, 3, 100.0}, FleetCase{32, 7, 0.0}, FleetCase{100, 7, 0.0}}) {
+  for (const FleetCase& c :
+       {FleetCase{8, 3, 100.0}, FleetCase{32, 7, 0.0}, FleetCase{100, 7, 0.0}}) {
     benchmark::RegisterBenchmark(("Aces/" + std::to_string(c.robots) + "/" + label).c_str(),
                                  BM_Merge, exe, c)
         ->Unit(benchmark::kMillisecond)

@@ -135,9 +135,13 @@ TEST(AcceptanceIndex, MatchesBruteForceForRandomPosesIncludingPartialOverlaps) {
       if (i > j / 3) b.set({i, j}, static_cast<CellState>(rng() % 3));
   const RowSpans spans = KnownRowSpans(b);
   std::uniform_real_distribution<double> shift(-60.0, 90.0), yaw(-M_PI, M_PI);
-  std::vector<Pose2> poses = {Pose2(), Pose2(0.5, -0.5, 0.0), Pose2(10.0, 3.0, M_PI / 2),
-                              Pose2(30.0, 20.0, M_PI), Pose2(-5.0, 40.0, -M_PI / 2),
-                              Pose2(500.0, 0.0, 0.3), Pose2(-1e9, 1e9, 1.0)};
+  std::vector<Pose2> poses = {Pose2(),
+                              Pose2(0.5, -0.5, 0.0),
+                              Pose2(10.0, 3.0, M_PI / 2),
+                              Pose2(30.0, 20.0, M_PI),
+                              Pose2(-5.0, 40.0, -M_PI / 2),
+                              Pose2(500.0, 0.0, 0.3),
+                              Pose2(-1e9, 1e9, 1.0)};
   for (int n = 0; n < 300; ++n) poses.emplace_back(shift(rng), shift(rng), yaw(rng));
   std::int64_t compared = 0;
   for (const Pose2& T : poses) {

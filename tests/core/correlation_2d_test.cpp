@@ -54,8 +54,8 @@ TEST(FixedImageCorrelator, HalfTurnMatchesDirectSumsOfFlippedImages) {
     cv::Mat1f r, r_half_turn;
     correlator.CorrelateSumAndHalfTurn(b, &r, &r_half_turn);
     const cv::Mat1f direct = CrossCorrelateDirect(a[0], b[0]) + CrossCorrelateDirect(a[1], b[1]);
-    const cv::Mat1f direct_flipped = CrossCorrelateDirect(a[0], b_flipped[0]) +
-                                     CrossCorrelateDirect(a[1], b_flipped[1]);
+    const cv::Mat1f direct_flipped =
+        CrossCorrelateDirect(a[0], b_flipped[0]) + CrossCorrelateDirect(a[1], b_flipped[1]);
     ASSERT_EQ(r_half_turn.size(), direct_flipped.size());
     EXPECT_LT(cv::norm(r, direct, cv::NORM_INF), 1e-3) << b_size;
     EXPECT_LT(cv::norm(r_half_turn, direct_flipped, cv::NORM_INF), 1e-3) << b_size;
