@@ -27,7 +27,7 @@ enum class TranslationMethod { kCorrelation2D, kXySpectra };
 struct TranslationOptions {
   TranslationMethod method = TranslationMethod::kCorrelation2D;
   int candidates = 3;         // translation peaks kept per rotation
-  int coarse_max_side = 192;  // kCorrelation2D: coarse image side that sets the pooling
+  int coarse_max_side = 256;  // kCorrelation2D: coarse image side that sets the pooling
   double free_penalty = 2.0;  // kCorrelation2D: weight of a wall on the other map's open space
 };
 

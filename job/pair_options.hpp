@@ -20,7 +20,7 @@ struct PairOptions {
   int candidates_per_hypothesis = 2;
   // Every candidate is refined cheaply (few wall points); the best few again with more.
   LocalAlignmentOptions quick_refine{300, 15, 1.0};
-  LocalAlignmentOptions final_refine{1500, 25, 0.5};
+  LocalAlignmentOptions final_refine{1500, 25, 1.0};
   int final_refine_count = 1;
 };
 
