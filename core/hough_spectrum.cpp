@@ -42,29 +42,12 @@ HoughTransform ComputeHoughTransform(const std::vector<Eigen::Vector2f>& points,
   const float inv_step = static_cast<float>(1.0 / h.rho_step);
   const float offset = static_cast<float>(-h.rho_min / h.rho_step);
   std::vector<int> bins(m);
-  // Neighbouring points of a wall vote into one bin, so a single counter would be incremented
-  // back to back and each increment would wait for the previous one; four interleaved copies of
-  // the column, summed at the end, keep four increments in flight (the same integer counts).
-  constexpr int kCopies = 4;
-  std::vector<int> copies(static_cast<std::size_t>(kCopies) * h.n_rho);
   for (int k = 0; k < h.n_theta; ++k) {
     const float c = static_cast<float>(std::cos(h.theta_rad(k))) * inv_step;
     const float s = static_cast<float>(std::sin(h.theta_rad(k))) * inv_step;
     for (std::size_t n = 0; n < m; ++n) bins[n] = static_cast<int>(xs[n] * c + ys[n] * s + offset);
-    std::fill(copies.begin(), copies.end(), 0);
-    std::size_t n = 0;
-    for (; n + kCopies <= m; n += kCopies) {  // Eq. (2): one vote per column
-      ++copies[bins[n] * kCopies];
-      ++copies[bins[n + 1] * kCopies + 1];
-      ++copies[bins[n + 2] * kCopies + 2];
-      ++copies[bins[n + 3] * kCopies + 3];
-    }
-    for (; n < m; ++n) ++copies[bins[n] * kCopies];
     int* column = h.votes.data() + static_cast<std::size_t>(k) * h.n_rho;
-    for (int i = 0; i < h.n_rho; ++i) {
-      const int* v = &copies[static_cast<std::size_t>(i) * kCopies];
-      column[i] = v[0] + v[1] + v[2] + v[3];
-    }
+    for (std::size_t n = 0; n < m; ++n) ++column[bins[n]];  // Eq. (2): one vote per column
   }
   return h;
 }
