@@ -1,12 +1,15 @@
 // Runs a program as a child process for the process-level benchmarks, and reports its peak
-// resident memory (getrusage of the child, as /usr/bin/time -v reports it).
+// resident memory (getrusage of the child, as /usr/bin/time -v reports it); and the main() those
+// benchmarks share. Include only where FLEETMERGE_EXE is defined.
 #pragma once
 
+#include <benchmark/benchmark.h>
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -39,6 +42,23 @@ inline ChildRun RunChild(const std::vector<std::string>& argv) {
   run.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
   run.peak_rss_mb = usage.ru_maxrss / 1024.0;  // kilobytes on Linux
   return run;
+}
+
+// main() of a benchmark of the fleetmerge executable: register_for(label, exe) registers its
+// benchmarks for this build's executable ("current") and, with FLEETMERGE_BASELINE_EXE set, for
+// that older one too ("baseline"), for a before/after comparison in one run.
+inline int RunExecutableBenchmarks(int argc, char** argv,
+                                   void (*register_for)(const std::string& label,
+                                                        const std::string& exe)) {
+  register_for("current", FLEETMERGE_EXE);
+  if (const char* baseline = std::getenv("FLEETMERGE_BASELINE_EXE")) {
+    register_for("baseline", baseline);
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
 }
 
 }  // namespace fleetmerge

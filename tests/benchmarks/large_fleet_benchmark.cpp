@@ -11,7 +11,6 @@
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
-#include <cstdlib>
 #include <map>
 #include <string>
 #include <vector>
@@ -87,13 +86,5 @@ void RegisterFor(const std::string& label, const std::string& exe) {
 }  // namespace fleetmerge
 
 int main(int argc, char** argv) {
-  fleetmerge::RegisterFor("current", FLEETMERGE_EXE);
-  if (const char* baseline = std::getenv("FLEETMERGE_BASELINE_EXE")) {
-    fleetmerge::RegisterFor("baseline", baseline);
-  }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return fleetmerge::RunExecutableBenchmarks(argc, argv, fleetmerge::RegisterFor);
 }

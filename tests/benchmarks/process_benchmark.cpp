@@ -7,7 +7,6 @@
 // executable, interleaved, for a before/after comparison in one run.
 #include <benchmark/benchmark.h>
 
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -54,12 +53,5 @@ void RegisterFor(const std::string& label, const std::string& exe) {
 }  // namespace fleetmerge
 
 int main(int argc, char** argv) {
-  fleetmerge::RegisterFor("current", FLEETMERGE_EXE);
-  if (const char* baseline = std::getenv("FLEETMERGE_BASELINE_EXE")) {
-    fleetmerge::RegisterFor("baseline", baseline);
-  }
-  benchmark::Initialize(&argc, argv);
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+  return fleetmerge::RunExecutableBenchmarks(argc, argv, fleetmerge::RegisterFor);
 }
