@@ -89,6 +89,8 @@ FleetOptions ToFleetOptions(const Options& o) {
   Require(o.min_overlap_cells >= 0, "min_overlap_cells must be >= 0");
   Require(o.min_wall_agreement >= 0.0 && o.min_wall_agreement <= 1.0,
           "min_wall_agreement must be in 0..1");
+  Require(o.min_bridge_wall_agreement >= 0.0 && o.min_bridge_wall_agreement <= 1.0,
+          "min_bridge_wall_agreement must be in 0..1");
   Require(o.threads >= 0, "threads must be >= 0 (0: all cores)");
   Require(o.max_map_cells > 0, "max_map_cells must be > 0");
   Require(std::isfinite(o.octree_band_min) && std::isfinite(o.octree_band_max) &&
@@ -99,6 +101,7 @@ FleetOptions ToFleetOptions(const Options& o) {
   f.omega_threshold = o.omega_threshold;
   f.min_overlap_cells = o.min_overlap_cells;
   f.min_wall_agreement = o.min_wall_agreement;
+  f.min_bridge_wall_agreement = o.min_bridge_wall_agreement;
   f.threads = o.threads;
   f.max_map_cells = o.max_map_cells;
   f.octree.band_min_m = o.octree_band_min;

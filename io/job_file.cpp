@@ -29,8 +29,8 @@ namespace {
 // clang-format off
 const std::vector<std::string> kJobKeys = {
     "name", "maps", "output", "reference", "resolution", "threads", "hypotheses_per_pair",
-    "omega_threshold", "min_overlap_cells", "min_wall_agreement", "refine", "seed", "hough", "translation",
-    "pose_graph", "fusion", "octree", "max_map_cells", "tf_parent", "tf_child"};
+    "omega_threshold", "min_overlap_cells", "min_wall_agreement", "min_bridge_wall_agreement",
+    "refine", "seed", "hough", "translation", "pose_graph", "fusion", "octree", "max_map_cells", "tf_parent", "tf_child"};
 // clang-format on
 
 SamplingOptions ReadSampling(const YamlField& field, const YamlErrors& errors) {
@@ -100,6 +100,9 @@ void ReadOptions(const YamlMapping& job, FleetOptions& options, const YamlErrors
   }
   if (auto f = job.Find("min_overlap_cells")) {
     options.min_overlap_cells = ReadInteger(*f, 0, INT_MAX, errors);
+  }
+  if (auto f = job.Find("min_bridge_wall_agreement")) {
+    options.min_bridge_wall_agreement = ReadNumber(*f, 0, 1, false, errors);
   }
   if (auto f = job.Find("max_map_cells")) {
     options.max_map_cells = ReadInteger(*f, 1, std::numeric_limits<std::int64_t>::max(), errors);

@@ -17,10 +17,15 @@ struct FleetOptions {
   PairOptions pair;           // Hough, sampling, hypotheses per pair, translation, refinement
   // A pair becomes a pose-graph edge when its best hypothesis has omega >= omega_threshold, at
   // least min_overlap_cells cells known in both maps, and a symmetric wall agreement
-  // (core/wall_agreement.hpp) >= min_wall_agreement. Defaults from the measurements in docs/method.md.
+  // (core/wall_agreement.hpp) >= min_wall_agreement. Defaults from the measurements in
+  // docs/method.md.
   double omega_threshold = 0.9;
   int min_overlap_cells = 5000;
   double min_wall_agreement = 0.8;
+  // An edge that is the only link between two groups of maps of a component of three or more
+  // (a bridge: no cycle checks it) needs wall agreement >= min_bridge_wall_agreement: chance
+  // matches of a look-alike building pass the thresholds above (pipeline/weak_bridges.hpp).
+  double min_bridge_wall_agreement = 0.88;
   PoseGraphOptions pose_graph;
   FusionMode fusion = FusionMode::kLogOdds;
   int threads = 0;       // 0: all cores

@@ -12,6 +12,7 @@
 #include "pipeline/corroboration.hpp"
 #include "pipeline/fleet_graph.hpp"
 #include "pipeline/parallel.hpp"
+#include "pipeline/weak_bridges.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -74,6 +75,21 @@ void CutSplit(const ComponentSplit& split, std::vector<PairOutcome>& pairs) {
   }
 }
 
+// Rejects a bridge edge whose walls are below the lone-link standard (pipeline/weak_bridges.hpp).
+void RejectWeakBridge(double min_bridge_wall_agreement, PairOutcome& pair) {
+  std::ostringstream note;
+  note << "rejected: the only link between two groups of maps, which no cycle checks, and ";
+  if (pair.edge_hypothesis == 0) {
+    note << "its wall agreement " << pair.wall_agreement;
+  } else {
+    note << "its hypothesis " << pair.edge_hypothesis + 1 << " has no measured wall agreement";
+  }
+  note << " is below min_bridge_wall_agreement " << min_bridge_wall_agreement;
+  pair.accepted = false;
+  pair.edge_hypothesis = -1;
+  pair.note = note.str();
+}
+
 }  // namespace
 
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
@@ -103,14 +119,19 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   AcceptByThreshold(result.pairs, options);
   FleetGraph graph =
       SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph);
-  // Each round splits a component, so this ends.
-  for (std::size_t round = 0; round < maps.size(); ++round) {
-    const auto verdicts =
-        JudgeSolvedPairs(result.maps, result.pairs, graph, options.min_overlap_cells,
-                         options.min_wall_agreement, options.pose_graph);
-    const auto split = MostContradictedSplit(verdicts, graph.component_of);
-    if (!split) break;
-    CutSplit(*split, result.pairs);
+  // Each round rejects at least one edge, so this ends.
+  for (std::size_t round = 0; round <= result.pairs.size(); ++round) {
+    if (const auto weak = WeakestBridge(static_cast<int>(maps.size()), result.pairs,
+                                        options.min_bridge_wall_agreement)) {
+      RejectWeakBridge(options.min_bridge_wall_agreement, result.pairs[*weak]);
+    } else {
+      const auto verdicts =
+          JudgeSolvedPairs(result.maps, result.pairs, graph, options.min_overlap_cells,
+                           options.min_wall_agreement, options.pose_graph);
+      const auto split = MostContradictedSplit(verdicts, graph.component_of);
+      if (!split) break;
+      CutSplit(*split, result.pairs);
+    }
     graph =
         SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph);
   }

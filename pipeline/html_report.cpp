@@ -170,6 +170,8 @@ nlohmann::json ChangedOptions(const FleetOptions& o) {
   AddChanged(c, "omega_threshold", o.omega_threshold, d.omega_threshold);
   AddChanged(c, "min_overlap_cells", o.min_overlap_cells, d.min_overlap_cells);
   AddChanged(c, "min_wall_agreement", o.min_wall_agreement, d.min_wall_agreement);
+  AddChanged(c, "min_bridge_wall_agreement", o.min_bridge_wall_agreement,
+             d.min_bridge_wall_agreement);
   AddChanged(c, "max_map_cells", o.max_map_cells, d.max_map_cells);
   AddChanged(c, "refine", o.pair.refine, d.pair.refine);
   AddChanged(c, "hough.n_theta", h.hough.n_theta, hd.hough.n_theta);

@@ -141,6 +141,7 @@ PYBIND11_MODULE(_fleetmerge, m) {
       .def_readwrite("omega_threshold", &fleetmerge::Options::omega_threshold)
       .def_readwrite("min_overlap_cells", &fleetmerge::Options::min_overlap_cells)
       .def_readwrite("min_wall_agreement", &fleetmerge::Options::min_wall_agreement)
+      .def_readwrite("min_bridge_wall_agreement", &fleetmerge::Options::min_bridge_wall_agreement)
       .def_readwrite("fusion", &fleetmerge::Options::fusion)
       .def_readwrite("reference", &fleetmerge::Options::reference)
       .def_readwrite("threads", &fleetmerge::Options::threads)

@@ -87,8 +87,8 @@ def merge(maps, out=None, **options):
     """Merges a fleet's maps (Maps or paths). All paths: exactly `fleetmerge merge --out OUT
     paths...` (maps named by file stem, octrees with their merged .bt). With out=DIR the usual
     result set (merged maps, previews, report.json) is written there, replaced as a whole.
-    Options are keywords: threads, omega_threshold, min_overlap_cells, min_wall_agreement, hypotheses,
-    resolution, fusion, reference, refine, translation, max_map_cells, octree_band_min/max."""
+    Options are keywords: threads, omega_threshold, min_overlap_cells, min_wall_agreement,
+    min_bridge_wall_agreement, hypotheses, resolution, fusion, reference, refine, translation, max_map_cells, octree_band_min/max."""
     maps = list(maps)
     o = _options(options)
     out_dir = "" if out is None else _path(out, "out")

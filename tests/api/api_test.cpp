@@ -20,6 +20,7 @@ TEST(Api, OptionDefaultsAreTheCommandLines) {
   EXPECT_EQ(api.omega_threshold, fleet.omega_threshold);
   EXPECT_EQ(api.min_overlap_cells, fleet.min_overlap_cells);
   EXPECT_EQ(api.min_wall_agreement, fleet.min_wall_agreement);
+  EXPECT_EQ(api.min_bridge_wall_agreement, fleet.min_bridge_wall_agreement);
   EXPECT_EQ(api.fusion, "log-odds");
   EXPECT_EQ(fleet.fusion, fleetmerge::FusionMode::kLogOdds);
   EXPECT_EQ(api.threads, fleet.threads);

@@ -35,6 +35,7 @@ void ExpectSameOptions(const FleetOptions& a, const FleetOptions& b) {
   EXPECT_EQ(a.omega_threshold, b.omega_threshold);
   EXPECT_EQ(a.min_overlap_cells, b.min_overlap_cells);
   EXPECT_EQ(a.min_wall_agreement, b.min_wall_agreement);
+  EXPECT_EQ(a.min_bridge_wall_agreement, b.min_bridge_wall_agreement);
   EXPECT_EQ(a.fusion, b.fusion);
   EXPECT_EQ(a.threads, b.threads);
   const HypothesisOptions& ha = a.pair.hypotheses;
@@ -141,6 +142,7 @@ TEST_F(JobFileTest, EveryKeyIsParsedIntoItsField) {
       "omega_threshold: 0.85\n"
       "min_overlap_cells: 500\n"
       "min_wall_agreement: 0.6\n"
+      "min_bridge_wall_agreement: 0.85\n"
       "refine: false\n"
       "seed: 42\n"
       "hough: {n_theta: 360, rho_step: 2.5, sampling: 'random:0.5'}\n"
@@ -169,6 +171,7 @@ TEST_F(JobFileTest, EveryKeyIsParsedIntoItsField) {
   EXPECT_EQ(o.omega_threshold, 0.85);
   EXPECT_EQ(o.min_overlap_cells, 500);
   EXPECT_EQ(o.min_wall_agreement, 0.6);
+  EXPECT_EQ(o.min_bridge_wall_agreement, 0.85);
   EXPECT_FALSE(o.pair.refine);
   const HypothesisOptions& h = o.pair.hypotheses;
   EXPECT_EQ(h.hough.n_theta, 360);
@@ -304,6 +307,9 @@ TEST_F(JobFileTest, EveryValueIsTypeAndRangeChecked) {
       {"omega_threshold: 1.1\n", "omega_threshold", "expected a number in [0, 1], got '1.1'"},
       {"min_wall_agreement: -0.1\n", "min_wall_agreement",
        "expected a number in [0, 1], got '-0.1'"},
+      {"min_bridge_wall_agreement: 1.5\n", "min_bridge_wall_agreement",
+       "expected a number in [0, 1], got '1.5'"},
+
       {"omega_threshold: -0.1\n", "omega_threshold", "in [0, 1]"},
       {"omega_threshold: .nan\n", "omega_threshold", "in [0, 1]"},
       {"omega_threshold: '0.9'\n", "omega_threshold", "got '0.9' (quoted, so a string)"},

@@ -88,6 +88,10 @@ struct Options {
   double omega_threshold = 0.9;     // Merge: best omega a pair needs to become an edge (Eq. 1)
   int min_overlap_cells = 5000;     // Merge: cells known in both maps an edge needs
   double min_wall_agreement = 0.8;  // Merge: symmetric wall agreement an edge needs
+  // Merge: an edge that is the only link between two groups of maps (of three or more) needs
+  // these walls: chance matches of a look-alike building pass the thresholds above. Lower it for
+  // maps from different SLAM systems, whose true walls agree less (0.83-0.88 measured)
+  double min_bridge_wall_agreement = 0.88;
   std::string fusion = "log-odds";  // Merge: log-odds | max | vote
   std::string reference;            // Merge: the reference map's name (empty: the first map)
   int threads = 0;                  // 0: all cores

@@ -1,0 +1,30 @@
+// Lone links (beyond the paper): an accepted edge that is the only link between two groups of
+// maps is a bridge of the pose graph. No cycle closes through it (fleet_graph.hpp) and, in the
+// cases measured, no other pair's search confirmed one, so its own evidence is all there is.
+//
+// The edge thresholds (omega, overlap, walls) are set for edges that cycles and cross pairs then
+// check. A map of another building built from the same modules (a second synthetic office, or a
+// floor that repeats another) matches one map of a fleet by chance often enough: on 210
+// simulated fleets with such a map, 11 chance bridges passed the thresholds with omega
+// 0.92-0.98 over 5600-21700 cells, 8 of them with wall agreement 0.80-0.87; the 200 true bridges
+// had wall agreement >= 0.897 (docs/accuracy.md, "Lone links"). So a bridge needs walls between
+// the two. Neither omega, the overlap, nor the share of the smaller map it covers told them apart.
+//
+// A component of two maps is exempt: its one edge is the whole merge of those two maps, not a
+// map hanging on a fleet, and maps of one floor from different SLAM runs agree less (walls
+// 0.83-0.88 for the Robotis corridor runs) while they are true.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "pipeline/all_pairs.hpp"
+
+namespace fleetmerge {
+
+// The index in `pairs` of the accepted bridge edge with the weakest walls among those of
+// components of three or more maps whose walls are below min_wall_agreement, or none.
+std::optional<int> WeakestBridge(int map_count, const std::vector<PairOutcome>& pairs,
+                                 double min_wall_agreement);
+
+}  // namespace fleetmerge
