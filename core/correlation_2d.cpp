@@ -1,5 +1,7 @@
 #include "core/correlation_2d.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
 
 namespace fleetmerge {
@@ -27,7 +29,7 @@ FixedImageCorrelator::FixedImageCorrelator(const std::vector<cv::Mat1f>& a_layer
 
 cv::Mat1f FixedImageCorrelator::Correlate(const cv::Mat1f& b) { return CorrelateSum({b}); }
 
-cv::Mat1f FixedImageCorrelator::CorrelateSum(const std::vector<cv::Mat1f>& b_layers) {
+cv::Size FixedImageCorrelator::TransformB(const std::vector<cv::Mat1f>& b_layers) {
   if (b_layers.size() != a_spectra_.size()) {
     throw Error("FixedImageCorrelator: one image B is needed per fixed layer");
   }
@@ -38,33 +40,54 @@ cv::Mat1f FixedImageCorrelator::CorrelateSum(const std::vector<cv::Mat1f>& b_lay
   // The work buffers are reused: fresh DFT-sized allocations cost more in page faults than the
   // transforms themselves (measured with perf on 530-cell maps).
   padded_.create(dft_size_);
+  b_spectra_.resize(b_layers.size());
   for (std::size_t k = 0; k < b_layers.size(); ++k) {
     const cv::Mat1f& b = b_layers[k];
     if (b.size() != b_size) throw Error("FixedImageCorrelator: B layers differ in size");
     padded_.setTo(0.f);
     b.copyTo(padded_(cv::Rect(0, 0, b.cols, b.rows)));
-    cv::dft(padded_, b_spectrum_, 0, b.rows);
+    cv::dft(padded_, b_spectra_[k], 0, b.rows);
+  }
+  return b_size;
+}
+
+void FixedImageCorrelator::InverseOfProducts(bool conjugate_b, int output_rows) {
+  for (std::size_t k = 0; k < b_spectra_.size(); ++k) {
     // conj(B) in the product: correlation rather than convolution.
-    cv::mulSpectrums(a_spectra_[k], b_spectrum_, k == 0 ? sum_ : product_, 0, /*conjB=*/true);
+    cv::mulSpectrums(a_spectra_[k], b_spectra_[k], k == 0 ? sum_ : product_, 0, conjugate_b);
     if (k > 0) sum_ += product_;
   }
-  cv::idft(sum_, circular_, cv::DFT_REAL_OUTPUT | cv::DFT_SCALE);
-  const cv::Mat1f& circular = circular_;
+  cv::idft(sum_, circular_, cv::DFT_REAL_OUTPUT | cv::DFT_SCALE, output_rows);
+}
 
-  // Circular index s holds the shift s (s >= 0) or s - N (negative shifts wrap to the end).
+cv::Mat1f FixedImageCorrelator::CorrelateSum(const std::vector<cv::Mat1f>& b_layers) {
+  const cv::Size b_size = TransformB(b_layers);
+  InverseOfProducts(/*conjugate_b=*/true);
+  // Circular index s holds the shift s (s >= 0) or s - N (negative shifts wrap to the end): the
+  // columns dx < 0 come from the end of a row, dx >= 0 from its start.
   const int out_cols = a_size_.width + b_size.width - 1;
   const int out_rows = a_size_.height + b_size.height - 1;
+  const int negative_cols = b_size.width - 1;
   cv::Mat1f out(out_rows, out_cols);
   for (int r = 0; r < out_rows; ++r) {
     const int dy = r - (b_size.height - 1);
-    const float* src = circular.ptr<float>((dy + dft_size_.height) % dft_size_.height);
+    const float* src = circular_.ptr<float>((dy + dft_size_.height) % dft_size_.height);
     float* dst = out.ptr<float>(r);
-    for (int c = 0; c < out_cols; ++c) {
-      const int dx = c - (b_size.width - 1);
-      dst[c] = src[(dx + dft_size_.width) % dft_size_.width];
-    }
+    std::copy(src + dft_size_.width - negative_cols, src + dft_size_.width, dst);
+    std::copy(src, src + (out_cols - negative_cols), dst + negative_cols);
   }
   return out;
+}
+
+void FixedImageCorrelator::CorrelateSumAndHalfTurn(const std::vector<cv::Mat1f>& b_layers,
+                                                   cv::Mat1f* r, cv::Mat1f* r_half_turn) {
+  *r = CorrelateSum(b_layers);  // leaves the B spectra in b_spectra_
+  // The convolution is read from its first rows only, so only those are transformed back.
+  InverseOfProducts(/*conjugate_b=*/false, r->rows);
+  // R(A, B')(dx, dy) = sum A(x + dx, y + dy) B(w - 1 - x, h - 1 - y) = (A * B)(dx + w - 1,
+  // dy + h - 1): Correlate's element (row, col) is the convolution's (row, col), no wrap-around
+  // because row < A.rows + h - 1 <= N.
+  circular_(cv::Rect(0, 0, r->cols, r->rows)).copyTo(*r_half_turn);
 }
 
 cv::Mat1f CrossCorrelateDirect(const cv::Mat1f& a, const cv::Mat1f& b) {

@@ -33,14 +33,29 @@ class FixedImageCorrelator {
   // fixed layer, all of one size within max_b_size.
   cv::Mat1f CorrelateSum(const std::vector<cv::Mat1f>& b_layers);
 
+  // CorrelateSum of the B layers and of the same layers turned by half a turn (each flipped in
+  // both axes, B'(x, y) = B(cols - 1 - x, rows - 1 - y)), from one forward transform per layer:
+  // B' has the spectrum conj(B) times a phase ramp, so R(A, B') is the convolution A * B read
+  // at shifted indices, and costs one inverse transform more instead of k forward ones. Both
+  // are laid out as Correlate's.
+  void CorrelateSumAndHalfTurn(const std::vector<cv::Mat1f>& b_layers, cv::Mat1f* r,
+                               cv::Mat1f* r_half_turn);
+
  private:
   cv::Size a_size_;
   cv::Size max_b_size_;
   cv::Size dft_size_;
   std::vector<cv::Mat> a_spectra_;
-  // Work buffers of CorrelateSum (so one correlator serves one thread).
+  // Forward transforms of the B layers into b_spectra_; returns their common size.
+  cv::Size TransformB(const std::vector<cv::Mat1f>& b_layers);
+  // sum_k A_k conj(B_k) (correlation) or sum_k A_k B_k (convolution), inverse-transformed into
+  // circular_; output_rows > 0: only its first output_rows rows are needed.
+  void InverseOfProducts(bool conjugate_b, int output_rows = 0);
+
+  // Work buffers (so one correlator serves one thread).
   cv::Mat1f padded_, circular_;
-  cv::Mat b_spectrum_, product_, sum_;
+  std::vector<cv::Mat> b_spectra_;
+  cv::Mat product_, sum_;
 };
 
 // The direct O(N^2 M^2) sum, for tests and tiny images.

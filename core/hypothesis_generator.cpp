@@ -69,31 +69,46 @@ std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapF
   const std::vector<double>& hs_b = fb.hough_spectrum;
 
   const std::vector<Eigen::Vector2f>& b_spectra_points = fb.spectra_points;
+  // The correlation search also needs where b is open (core/translation_search.hpp).
+  const std::vector<Eigen::Vector2f>& b_free_points = fb.free;
+  const RowSpans& b_spans = fb.known_spans;
+  const bool sampled = b_spectra_points.size() != b_points.size();
+  // Rotation candidates come as (psi, psi + pi) pairs (RotationCandidates).
+  const std::vector<double> yaws = RotationCandidates(hs_a, hs_b, options.rotation_peaks);
+
+  // b rotated by each psi: its scored walls, all walls (when the scored ones are a sample) and
+  // free cells. Rotated before the correlator is made, so that its transforms are sized for the
+  // largest of these images rather than for b's diagonal.
+  struct RotatedB {
+    std::vector<Eigen::Vector2f> scored_walls, walls, free;
+  };
+  std::vector<RotatedB> rotated;
   std::unique_ptr<CorrelationTranslation> correlation;
   std::unique_ptr<XySpectraTranslation> spectra;
   if (options.translation.method == TranslationMethod::kCorrelation2D) {
-    const double b_diagonal = std::hypot(double(b.width()), double(b.height()));
-    correlation = std::make_unique<CorrelationTranslation>(a, b_diagonal, options.translation);
+    const int pooling = CorrelationPooling(a, b, options.translation);
+    cv::Size max_b_pixels(1, 1);
+    for (std::size_t k = 0; k + 1 < yaws.size(); k += 2) {
+      RotatedB r;
+      r.scored_walls = RotatePoints(b_spectra_points, yaws[k]);
+      if (sampled) r.walls = RotatePoints(b_points, yaws[k]);
+      r.free = RotatePoints(b_free_points, yaws[k]);
+      const cv::Size size = CorrelationTranslation::RasterSize(
+          r.scored_walls, sampled ? r.walls : r.scored_walls, r.free, pooling);
+      max_b_pixels.width = std::max(max_b_pixels.width, size.width);
+      max_b_pixels.height = std::max(max_b_pixels.height, size.height);
+      rotated.push_back(std::move(r));
+    }
+    correlation =
+        std::make_unique<CorrelationTranslation>(a, pooling, max_b_pixels, options.translation);
   } else {
     spectra = std::make_unique<XySpectraTranslation>(fa.spectra_points, DominantDirection(hs_a),
                                                      options.translation);
   }
 
-  // The correlation search also needs where b is open (core/translation_search.hpp).
-  const std::vector<Eigen::Vector2f>& b_free_points = fb.free;
-  const RowSpans& b_spans = fb.known_spans;
   std::vector<CellHypothesis> candidates;
-  const bool sampled = b_spectra_points.size() != b_points.size();
-  for (const double yaw : RotationCandidates(hs_a, hs_b, options.rotation_peaks)) {
-    const auto b_rotated = RotatePoints(b_spectra_points, yaw);
-    std::vector<TranslationCandidate> translations;
-    if (correlation) {
-      const auto b_walls = sampled ? RotatePoints(b_points, yaw) : std::vector<Eigen::Vector2f>{};
-      translations = correlation->Find(b_rotated, sampled ? b_walls : b_rotated,
-                                       RotatePoints(b_free_points, yaw));
-    } else {
-      translations = spectra->Find(b_rotated);
-    }
+  const auto add_candidates = [&](const std::vector<TranslationCandidate>& translations,
+                                  double yaw) {
     for (const auto& t : translations) {
       const Pose2 T_ga_gb(t.t_cells, yaw);
       // Ranking pass on every other row and column: 4x cheaper, same order in practice (the
@@ -101,6 +116,21 @@ std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapF
       const Agreement agreement = CountAgreement(a, b, T_ga_gb, 2, &b_spans);
       candidates.push_back(
           {T_ga_gb, agreement.omega(), 4 * (agreement.agree + agreement.disagree)});
+    }
+  };
+  // The correlation search serves psi + pi from psi's forward transforms
+  // (CorrelationTranslation::FindWithHalfTurn).
+  for (std::size_t k = 0; k + 1 < yaws.size(); k += 2) {
+    const double yaw = yaws[k], yaw_half_turn = yaws[k + 1];
+    if (correlation) {
+      const RotatedB& r = rotated[k / 2];
+      const auto found =
+          correlation->FindWithHalfTurn(r.scored_walls, sampled ? r.walls : r.scored_walls, r.free);
+      add_candidates(found[0], yaw);
+      add_candidates(found[1], yaw_half_turn);
+    } else {
+      add_candidates(spectra->Find(RotatePoints(b_spectra_points, yaw)), yaw);
+      add_candidates(spectra->Find(RotatePoints(b_spectra_points, yaw_half_turn)), yaw_half_turn);
     }
   }
   SortHypotheses(candidates, options.min_overlap_cells);

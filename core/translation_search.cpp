@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <opencv2/imgproc.hpp>
 
 namespace fleetmerge {
@@ -41,31 +42,92 @@ CoarseLayers CoarseGridLayers(const OccupancyGrid& a, int pooling) {
   return OpenSpaceAround(walls, free);
 }
 
-// The fixed layers of a: the score of a pixel for a wall of b, and a's walls.
-std::vector<cv::Mat1f> FixedLayers(const OccupancyGrid& a, int pooling, double free_penalty) {
+// The fixed layers of a: the score of a pixel for a wall of b, and a's walls, cropped to a's
+// known cells plus a margin the blur and the dilation cannot cross (everything beyond is zero in
+// both layers, so the crop changes no correlation value; re-framed maps are mostly unknown and
+// the transforms' cost grows with the area). *offset_px: the crop's first pixel.
+std::vector<cv::Mat1f> FixedLayers(const OccupancyGrid& a, int pooling, double free_penalty,
+                                   cv::Point* offset_px) {
   const CoarseLayers layers = CoarseGridLayers(a, pooling);
+  cv::Rect known = cv::boundingRect((layers.walls > 0.f) | (layers.open > 0.f));
+  *offset_px = cv::Point(0, 0);
+  if (known.area() > 0) {
+    constexpr int kMargin = 3;  // the 5 x 5 blur reaches 2 pixels, the wall dilation 1
+    known = cv::Rect(known.x - kMargin, known.y - kMargin, known.width + 2 * kMargin,
+                     known.height + 2 * kMargin) &
+            cv::Rect(0, 0, layers.walls.cols, layers.walls.rows);
+    *offset_px = known.tl();
+  } else {
+    known = cv::Rect(0, 0, layers.walls.cols, layers.walls.rows);
+  }
   cv::Mat1f wall_score;
   // The blur widens the peak so a rotation off by a fraction of a degree still correlates.
   cv::GaussianBlur(layers.walls, wall_score, cv::Size(5, 5), 1.0);
-  return {wall_score - free_penalty * layers.open, layers.walls};
+  const cv::Mat1f score = wall_score - free_penalty * layers.open;
+  return {score(known).clone(), layers.walls(known).clone()};
 }
 
-// Local maxima of a 2-D surface (5x5 neighbourhood), largest first, with sub-pixel parabolas.
+// A b image of any rotation of points within b_extent_cells of each other fits this.
+cv::Size ImageBound(double b_extent_cells, int pooling) {
+  const int side = static_cast<int>(std::ceil(b_extent_cells / pooling)) + 2;
+  return cv::Size(side, side);
+}
+
+// The rotated b points' bounding box, over every point the search rasterizes.
+struct PointBox {
+  Eigen::Vector2f min, max;
+};
+PointBox BoundingBox(const std::vector<Eigen::Vector2f>& scored_walls,
+                     const std::vector<Eigen::Vector2f>& walls,
+                     const std::vector<Eigen::Vector2f>& free) {
+  PointBox box{walls.front(), walls.front()};
+  for (const auto* points : {&scored_walls, &walls, &free}) {
+    for (const auto& q : *points) {
+      box.min = box.min.cwiseMin(q);
+      box.max = box.max.cwiseMax(q);
+    }
+  }
+  return box;
+}
+
+cv::Size RasterSizeOf(const PointBox& box, int pooling) {
+  return cv::Size(int((box.max.x() - box.min.x()) / pooling) + 1,
+                  int((box.max.y() - box.min.y()) / pooling) + 1);
+}
+
+// Local maxima of a 2-D surface (5x5 neighbourhood, border rows and columns excluded), largest
+// first, with sub-pixel parabolas. Only a pixel above the count-th best maximum found so far can
+// still be one of the results, so almost every pixel costs one comparison (a 5x5 dilation of the
+// whole surface was 6 % of the hypothesis search).
 std::vector<TranslationCandidate> SurfacePeaks(const cv::Mat1f& surface, int count) {
-  cv::Mat1f dilated;
-  cv::dilate(surface, dilated, cv::Mat(), cv::Point(-1, -1), 2);
   std::vector<TranslationCandidate> peaks;
+  if (count <= 0) return peaks;
+  std::vector<float> best;  // the count best maxima so far, descending
+  const auto is_local_maximum = [&](int r, int c, float v) {
+    for (int y = std::max(r - 2, 0); y <= std::min(r + 2, surface.rows - 1); ++y) {
+      const float* row = surface.ptr<float>(y);
+      for (int x = std::max(c - 2, 0); x <= std::min(c + 2, surface.cols - 1); ++x) {
+        if (row[x] > v) return false;
+      }
+    }
+    return true;
+  };
   for (int r = 1; r + 1 < surface.rows; ++r) {
+    const float* row = surface.ptr<float>(r);
     for (int c = 1; c + 1 < surface.cols; ++c) {
-      const float v = surface(r, c);
-      if (v <= 0.f || v < dilated(r, c)) continue;
+      const float v = row[c];
+      if (v <= 0.f) continue;
+      if (static_cast<int>(best.size()) == count && v < best.back()) continue;
+      if (!is_local_maximum(r, c, v)) continue;
       const auto vertex = [](float m, float z, float p) {
         const float curvature = m - 2.f * z + p;
         return curvature < 0.f ? 0.5f * (m - p) / curvature : 0.f;
       };
-      const double dx = c + vertex(surface(r, c - 1), v, surface(r, c + 1));
+      const double dx = c + vertex(row[c - 1], v, row[c + 1]);
       const double dy = r + vertex(surface(r - 1, c), v, surface(r + 1, c));
       peaks.push_back({Eigen::Vector2d(dx, dy), v});
+      best.insert(std::upper_bound(best.begin(), best.end(), v, std::greater<float>()), v);
+      if (static_cast<int>(best.size()) > count) best.pop_back();
     }
   }
   std::sort(peaks.begin(), peaks.end(),
@@ -81,27 +143,36 @@ int CorrelationPooling(const OccupancyGrid& a, const OccupancyGrid& b,
   return PoolingFor(a, std::hypot(double(b.width()), double(b.height())), options.coarse_max_side);
 }
 
+cv::Size CorrelationTranslation::RasterSize(const std::vector<Eigen::Vector2f>& scored_walls,
+                                            const std::vector<Eigen::Vector2f>& walls,
+                                            const std::vector<Eigen::Vector2f>& free, int pooling) {
+  if (walls.empty()) return cv::Size(1, 1);
+  return RasterSizeOf(BoundingBox(scored_walls, walls, free), pooling);
+}
+
 CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, double b_extent_cells,
                                                const TranslationOptions& options)
-    : options_(options),
-      pooling_(PoolingFor(a, b_extent_cells, options.coarse_max_side)),
-      max_b_size_(static_cast<int>(std::ceil(b_extent_cells / pooling_)) + 2,
-                  static_cast<int>(std::ceil(b_extent_cells / pooling_)) + 2),
-      correlator_(FixedLayers(a, pooling_, options.free_penalty), max_b_size_) {}
+    : CorrelationTranslation(
+          a, PoolingFor(a, b_extent_cells, options.coarse_max_side),
+          ImageBound(b_extent_cells, PoolingFor(a, b_extent_cells, options.coarse_max_side)),
+          options) {}
 
-std::vector<TranslationCandidate> CorrelationTranslation::Find(
+CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, int pooling,
+                                               cv::Size max_b_pixels,
+                                               const TranslationOptions& options)
+    : options_(options),
+      pooling_(std::max(pooling, 1)),
+      max_b_size_(max_b_pixels),
+      correlator_(FixedLayers(a, pooling_, options.free_penalty, &a_offset_px_), max_b_size_) {}
+
+CorrelationTranslation::BLayers CorrelationTranslation::RasterizeB(
     const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
-    const std::vector<Eigen::Vector2f>& free) {
-  if (scored_walls.empty() || walls.empty()) return {};
-  Eigen::Vector2f q_min = walls.front(), q_max = walls.front();
-  for (const auto* points : {&scored_walls, &walls, &free}) {
-    for (const auto& q : *points) {
-      q_min = q_min.cwiseMin(q);
-      q_max = q_max.cwiseMax(q);
-    }
-  }
-  const int w = std::min(max_b_size_.width, int((q_max.x() - q_min.x()) / pooling_) + 1);
-  const int h = std::min(max_b_size_.height, int((q_max.y() - q_min.y()) / pooling_) + 1);
+    const std::vector<Eigen::Vector2f>& free) const {
+  const PointBox box = BoundingBox(scored_walls, walls, free);
+  const Eigen::Vector2f q_min = box.min;
+  const cv::Size size = RasterSizeOf(box, pooling_);
+  const int w = std::min(max_b_size_.width, size.width);
+  const int h = std::min(max_b_size_.height, size.height);
   const auto rasterize = [&](const std::vector<Eigen::Vector2f>& points) {
     cv::Mat1f image = cv::Mat1f::zeros(h, w);
     for (const auto& q : points) {
@@ -113,14 +184,53 @@ std::vector<TranslationCandidate> CorrelationTranslation::Find(
   };
   const CoarseLayers b_layers = OpenSpaceAround(rasterize(walls), rasterize(free));
   // b's scored walls against a's score layer, minus a's walls on b's open space.
-  const cv::Mat1f surface = correlator_.CorrelateSum(
-      {rasterize(scored_walls), static_cast<cv::Mat1f>(-options_.free_penalty * b_layers.open)});
+  return {{&scored_walls == &walls ? b_layers.walls : rasterize(scored_walls),
+           static_cast<cv::Mat1f>(-options_.free_penalty * b_layers.open)},
+          q_min};
+}
+
+std::vector<TranslationCandidate> CorrelationTranslation::Find(
+    const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
+    const std::vector<Eigen::Vector2f>& free) {
+  if (scored_walls.empty() || walls.empty()) return {};
+  const BLayers b = RasterizeB(scored_walls, walls, free);
+  const cv::Mat1f surface = correlator_.CorrelateSum(b.layers);
+  const int w = b.layers.front().cols, h = b.layers.front().rows;
   // b pixel u covers q - q_min in [p u, p u + p); shifted by d it meets a pixel u + d, which
   // covers a cells [p (u + d), ...): so q + t lies in a with t = p d - q_min.
   std::vector<TranslationCandidate> out = SurfacePeaks(surface, options_.candidates);
   for (auto& c : out) {
-    const Eigen::Vector2d d(c.t_cells.x() - (w - 1), c.t_cells.y() - (h - 1));
-    c.t_cells = pooling_ * d - q_min.cast<double>();
+    const Eigen::Vector2d d(c.t_cells.x() - (w - 1) + a_offset_px_.x,
+                            c.t_cells.y() - (h - 1) + a_offset_px_.y);
+    c.t_cells = pooling_ * d - b.q_min.cast<double>();
+  }
+  return out;
+}
+
+std::array<std::vector<TranslationCandidate>, 2> CorrelationTranslation::FindWithHalfTurn(
+    const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
+    const std::vector<Eigen::Vector2f>& free) {
+  if (scored_walls.empty() || walls.empty()) return {};
+  const BLayers b = RasterizeB(scored_walls, walls, free);
+  cv::Mat1f surface, surface_half_turn;
+  correlator_.CorrelateSumAndHalfTurn(b.layers, &surface, &surface_half_turn);
+  const int w = b.layers.front().cols, h = b.layers.front().rows;
+  std::array<std::vector<TranslationCandidate>, 2> out = {
+      SurfacePeaks(surface, options_.candidates),
+      SurfacePeaks(surface_half_turn, options_.candidates)};
+  for (auto& c : out[0]) {  // as in Find
+    const Eigen::Vector2d d(c.t_cells.x() - (w - 1) + a_offset_px_.x,
+                            c.t_cells.y() - (h - 1) + a_offset_px_.y);
+    c.t_cells = pooling_ * d - b.q_min.cast<double>();
+  }
+  // The flipped image's pixel u' = w - 1 - u holds the turned points -q with q in b's pixel u:
+  // -q lies in (A + p u', A + p u' + p] with A = -q_min - p (w, h), the flipped image's anchor,
+  // so t = p d - A as above.
+  const Eigen::Vector2d anchor = -b.q_min.cast<double>() - pooling_ * Eigen::Vector2d(w, h);
+  for (auto& c : out[1]) {
+    const Eigen::Vector2d d(c.t_cells.x() - (w - 1) + a_offset_px_.x,
+                            c.t_cells.y() - (h - 1) + a_offset_px_.y);
+    c.t_cells = pooling_ * d - anchor;
   }
   return out;
 }

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "core/correlation_2d.hpp"
@@ -45,6 +46,15 @@ class CorrelationTranslation {
   // b_extent_cells bounds the side of rotated b's bounding box (b's diagonal).
   CorrelationTranslation(const OccupancyGrid& a, double b_extent_cells,
                          const TranslationOptions& options);
+  // With the pooling (CorrelationPooling) and the largest b image (RasterSize of every rotation
+  // that will be searched) known: the transforms are then only as large as those images need,
+  // not as b's diagonal, and the results are the same.
+  CorrelationTranslation(const OccupancyGrid& a, int pooling, cv::Size max_b_pixels,
+                         const TranslationOptions& options);
+  // The size of the b image that Find rasterizes from these points at this pooling.
+  static cv::Size RasterSize(const std::vector<Eigen::Vector2f>& scored_walls,
+                             const std::vector<Eigen::Vector2f>& walls,
+                             const std::vector<Eigen::Vector2f>& free, int pooling);
   // Centres of b's cells, rotated by the hypothesis: scored_walls, the occupied cells that vote
   // (sampled, Section III-D); walls, every occupied cell, and free, every free cell, which say
   // where b is open. Open space must come from all walls: a wall left out of a sample would
@@ -53,15 +63,33 @@ class CorrelationTranslation {
   std::vector<TranslationCandidate> Find(const std::vector<Eigen::Vector2f>& scored_walls,
                                          const std::vector<Eigen::Vector2f>& walls,
                                          const std::vector<Eigen::Vector2f>& free);
+  // Find for the points as given (result[0]) and turned by a further half turn, q -> -q
+  // (result[1]): the Hough spectrum cannot tell psi from psi + pi (Section III-A), so both are
+  // searched, and the half-turned images are the given ones flipped, which the correlator
+  // serves from the same forward transforms. Pass one vector as scored_walls and walls when
+  // every wall is scored.
+  std::array<std::vector<TranslationCandidate>, 2> FindWithHalfTurn(
+      const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
+      const std::vector<Eigen::Vector2f>& free);
   int pooling() const { return pooling_; }
 
  private:
   TranslationOptions options_;
   int pooling_ = 1;  // cells per coarse pixel
   cv::Size max_b_size_;
+  cv::Point a_offset_px_;  // a's coarse pixel of the fixed layers' (0, 0): they are cropped
   // Layers of a: score for b's walls (blurred walls - penalty * open space), a's walls (against
   // b's open space).
   FixedImageCorrelator correlator_;
+
+  // b's layers (scored walls, -penalty * open space) on the coarse grid anchored at q_min.
+  struct BLayers {
+    std::vector<cv::Mat1f> layers;
+    Eigen::Vector2f q_min;
+  };
+  BLayers RasterizeB(const std::vector<Eigen::Vector2f>& scored_walls,
+                     const std::vector<Eigen::Vector2f>& walls,
+                     const std::vector<Eigen::Vector2f>& free) const;
 };
 
 class XySpectraTranslation {

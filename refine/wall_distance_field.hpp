@@ -33,6 +33,12 @@ class WallDistanceField {
     // repeats the border, which is the truncation value: flat, so no force.
     interpolator_->Evaluate(y_cells - (offset_.y() + 0.5), x_cells - (offset_.x() + 0.5), distance);
   }
+  // The same with the gradient (d distance / d x, d distance / d y), for analytic Jacobians.
+  void Evaluate(double x_cells, double y_cells, double* distance, double* d_dx,
+                double* d_dy) const {
+    interpolator_->Evaluate(y_cells - (offset_.y() + 0.5), x_cells - (offset_.x() + 0.5), distance,
+                            d_dy, d_dx);
+  }
   double truncation_cells() const { return truncation_cells_; }
 
  private:

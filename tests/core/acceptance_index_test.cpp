@@ -102,3 +102,61 @@ TEST(AcceptanceIndex, RowSpansGiveTheSameCountsAtEveryStride) {
 
 }  // namespace
 }  // namespace fleetmerge
+
+namespace fleetmerge {
+namespace {
+
+// Brute force at any stride: every visited cell of b looked up in a by its own floor().
+Agreement CountByHand(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb,
+                      int stride) {
+  Agreement expected;
+  for (int j = 0; j < b.height(); j += stride) {
+    for (int i = 0; i < b.width(); i += stride) {
+      const Eigen::Vector2d p = T_ga_gb * Eigen::Vector2d(i + 0.5, j + 0.5);
+      const Eigen::Array2i cell = p.array().floor().cast<int>();
+      const CellState sa = a.StateOrUnknown(cell), sb = b.at({i, j});
+      if (sa == CellState::kUnknown || sb == CellState::kUnknown) continue;
+      (sa == sb ? expected.agree : expected.disagree)++;
+    }
+  }
+  return expected;
+}
+
+TEST(AcceptanceIndex, MatchesBruteForceForRandomPosesIncludingPartialOverlaps) {
+  // The count clips each row of b to the part that lands in a; poses that put b half outside a,
+  // beyond each of its four edges, entirely outside, or on exact cell borders must all count
+  // what the cell-by-cell oracle counts.
+  std::mt19937 rng(33);
+  OccupancyGrid a(GridGeometry(0.05, {47, 38})), b(GridGeometry(0.05, {29, 41}));
+  for (int j = 0; j < a.height(); ++j)
+    for (int i = 0; i < a.width(); ++i) a.set({i, j}, static_cast<CellState>(rng() % 3));
+  for (int j = 0; j < b.height(); ++j)
+    for (int i = 0; i < b.width(); ++i)
+      if (i > j / 3) b.set({i, j}, static_cast<CellState>(rng() % 3));
+  const RowSpans spans = KnownRowSpans(b);
+  std::uniform_real_distribution<double> shift(-60.0, 90.0), yaw(-M_PI, M_PI);
+  std::vector<Pose2> poses = {Pose2(),
+                              Pose2(0.5, -0.5, 0.0),
+                              Pose2(10.0, 3.0, M_PI / 2),
+                              Pose2(30.0, 20.0, M_PI),
+                              Pose2(-5.0, 40.0, -M_PI / 2),
+                              Pose2(500.0, 0.0, 0.3),
+                              Pose2(-1e9, 1e9, 1.0)};
+  for (int n = 0; n < 300; ++n) poses.emplace_back(shift(rng), shift(rng), yaw(rng));
+  std::int64_t compared = 0;
+  for (const Pose2& T : poses) {
+    for (const int stride : {1, 2, 3}) {
+      const Agreement expected = CountByHand(a, b, T, stride);
+      for (const RowSpans* s : {static_cast<const RowSpans*>(nullptr), &spans}) {
+        const Agreement got = CountAgreement(a, b, T, stride, s);
+        ASSERT_EQ(got.agree, expected.agree) << T.x_m() << " " << T.y_m() << " " << stride;
+        ASSERT_EQ(got.disagree, expected.disagree) << T.x_m() << " " << T.y_m() << " " << stride;
+      }
+      compared += expected.agree + expected.disagree;
+    }
+  }
+  EXPECT_GT(compared, 10000);  // many poses overlap: the test compares real counts
+}
+
+}  // namespace
+}  // namespace fleetmerge

@@ -43,6 +43,25 @@ TEST(FixedImageCorrelator, LayerSumMatchesSumOfDirectCorrelations) {
       Error);
 }
 
+TEST(FixedImageCorrelator, HalfTurnMatchesDirectSumsOfFlippedImages) {
+  const std::vector<cv::Mat1f> a = {RandomImage(13, 17, 8), RandomImage(13, 17, 9)};
+  FixedImageCorrelator correlator(a, cv::Size(9, 11));
+  for (const cv::Size b_size : {cv::Size(9, 11), cv::Size(5, 3), cv::Size(1, 1)}) {
+    const std::vector<cv::Mat1f> b = {RandomImage(b_size.height, b_size.width, 10),
+                                      RandomImage(b_size.height, b_size.width, 11)};
+    std::vector<cv::Mat1f> b_flipped(2);
+    for (int k = 0; k < 2; ++k) cv::flip(b[k], b_flipped[k], -1);  // both axes
+    cv::Mat1f r, r_half_turn;
+    correlator.CorrelateSumAndHalfTurn(b, &r, &r_half_turn);
+    const cv::Mat1f direct = CrossCorrelateDirect(a[0], b[0]) + CrossCorrelateDirect(a[1], b[1]);
+    const cv::Mat1f direct_flipped =
+        CrossCorrelateDirect(a[0], b_flipped[0]) + CrossCorrelateDirect(a[1], b_flipped[1]);
+    ASSERT_EQ(r_half_turn.size(), direct_flipped.size());
+    EXPECT_LT(cv::norm(r, direct, cv::NORM_INF), 1e-3) << b_size;
+    EXPECT_LT(cv::norm(r_half_turn, direct_flipped, cv::NORM_INF), 1e-3) << b_size;
+  }
+}
+
 TEST(FixedImageCorrelator, PeakIsAtTheTrueShift) {
   cv::Mat1f a = cv::Mat1f::zeros(40, 50);
   cv::Mat1f b = cv::Mat1f::zeros(10, 12);
