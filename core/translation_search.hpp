@@ -26,8 +26,10 @@ enum class TranslationMethod { kCorrelation2D, kXySpectra };
 
 struct TranslationOptions {
   TranslationMethod method = TranslationMethod::kCorrelation2D;
-  int candidates = 3;         // translation peaks kept per rotation
-  int coarse_max_side = 256;  // kCorrelation2D: coarse image side that sets the pooling
+  int candidates = 3;  // translation peaks kept per rotation
+  // kCorrelation2D: coarse image side that sets the pooling. 192 rather than 256: DFTs of 324
+  // instead of 432 for a 530 x 530 pair (5-8 ms of its search); 160 lost held-out pairs.
+  int coarse_max_side = 192;
   double free_penalty = 2.0;  // kCorrelation2D: weight of a wall on the other map's open space
 };
 
