@@ -25,7 +25,7 @@ struct FleetOptions {
   // An edge that is the only link between two groups of maps of a component of three or more
   // (a bridge: no cycle checks it) needs wall agreement >= min_bridge_wall_agreement: chance
   // matches of a look-alike building pass the thresholds above (pipeline/weak_bridges.hpp).
-  double min_bridge_wall_agreement = 0.88;
+  double min_bridge_wall_agreement = 0.89;
   PoseGraphOptions pose_graph;
   FusionMode fusion = FusionMode::kLogOdds;
   int threads = 0;       // 0: all cores

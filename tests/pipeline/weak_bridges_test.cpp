@@ -25,7 +25,7 @@ PairOutcome Edge(int a, int b, double walls) {
   return p;
 }
 
-constexpr double kStandard = 0.88;
+constexpr double kStandard = 0.89;
 
 TEST(WeakBridges, OnlyBridgesBelowTheStandardAreNamed) {
   // A triangle 0-1-2 of weak edges (each closes a cycle) and a strong pendant 3.

@@ -91,7 +91,7 @@ struct Options {
   // Merge: an edge that is the only link between two groups of maps (of three or more) needs
   // these walls: chance matches of a look-alike building pass the thresholds above. Lower it for
   // maps from different SLAM systems, whose true walls agree less (0.83-0.88 measured)
-  double min_bridge_wall_agreement = 0.88;
+  double min_bridge_wall_agreement = 0.89;
   std::string fusion = "log-odds";  // Merge: log-odds | max | vote
   std::string reference;            // Merge: the reference map's name (empty: the first map)
   int threads = 0;                  // 0: all cores
