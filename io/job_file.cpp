@@ -30,7 +30,8 @@ namespace {
 const std::vector<std::string> kJobKeys = {
     "name", "maps", "output", "reference", "resolution", "threads", "hypotheses_per_pair",
     "omega_threshold", "min_overlap_cells", "min_wall_agreement", "min_bridge_wall_agreement",
-    "refine", "seed", "hough", "translation", "pose_graph", "fusion", "octree", "max_map_cells", "tf_parent", "tf_child"};
+    "refine", "seed", "hough", "translation", "pose_graph", "fusion", "octree", "max_map_cells",
+    "tf_parent", "tf_child"};
 // clang-format on
 
 SamplingOptions ReadSampling(const YamlField& field, const YamlErrors& errors) {
