@@ -21,15 +21,19 @@ std::vector<PoseGraphEdge> EdgesOf(const std::vector<PairOutcome>& pairs) {
   return edges;
 }
 
-std::vector<int> Components(int map_count, const std::vector<PairOutcome>& pairs) {
+}  // namespace
+
+std::vector<int> Components(int map_count, const std::vector<PairOutcome>& pairs, int skip_pair) {
   std::vector<int> parent(map_count);
   std::iota(parent.begin(), parent.end(), 0);
   const auto find = [&](int x) {
     while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
   };
-  for (const auto& p : pairs) {
-    if (p.accepted) parent[std::max(find(p.a), find(p.b))] = std::min(find(p.a), find(p.b));
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    const PairOutcome& p = pairs[k];
+    if (k == skip_pair || !p.accepted) continue;
+    parent[std::max(find(p.a), find(p.b))] = std::min(find(p.a), find(p.b));
   }
   // Number components by their first map, in map order.
   std::vector<int> id(map_count, -1), component(map_count);
@@ -41,6 +45,8 @@ std::vector<int> Components(int map_count, const std::vector<PairOutcome>& pairs
   }
   return component;
 }
+
+namespace {
 
 std::vector<std::optional<Pose2>> Solve(int map_count, const std::vector<PairOutcome>& pairs,
                                         int reference, const PoseGraphOptions& options) {

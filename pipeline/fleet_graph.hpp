@@ -24,6 +24,11 @@ struct FleetGraph {
   std::vector<Pose2> T_component_map;    // per map: its frame in its component's frame
 };
 
+// Per map, its component under the accepted pairs (all but pairs[skip_pair]), numbered by their
+// first map, in map order.
+std::vector<int> Components(int map_count, const std::vector<PairOutcome>& pairs,
+                            int skip_pair = -1);
+
 // Marks pairs accepted (in `pairs`, with edge_hypothesis and notes) and returns the poses.
 // `reference` is the job's reference map; other components use their first map.
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
