@@ -8,28 +8,7 @@
 # looking at these.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-fleetmerge=./build/cli/fleetmerge
-maps=../shared/data/maps
-out=${1:-out/heldout}
-if [ ! -d "$maps" ]; then
-  echo "heldout_accuracy: $maps is missing (the real building maps)" >&2
-  exit 1
-fi
-mkdir -p "$out"
-
-run_case() {  # name, then `fleetmerge simulate` options
-  local name=$1 dir=$out/$1
-  shift
-  rm -rf "$dir"
-  "$fleetmerge" simulate "$dir" --path-length 100 "$@" >/dev/null
-  "$fleetmerge" merge "$dir/job.yaml" --quiet >/dev/null
-  "$fleetmerge" eval "$dir/merged/report.json" "$dir/truth.yaml" --json >"$dir/eval.json"
-  python3 - "$name" "$dir/eval.json" <<'EOF'
-import json, sys
-s = json.load(open(sys.argv[2]))["summary"]
-print(sys.argv[1], s["scored_pairs"], s["coarse_pairs"], s["fine_pairs"], s["false_merges"])
-EOF
-}
+source scripts/simulated_cases.sh heldout_accuracy "${1:-out/heldout}"
 
 {
   for seed in ${HELDOUT_SEEDS_A:-11 12}; do

@@ -8,43 +8,24 @@
 # scripts/bridges.py OUT_DIR/* lists every accepted bridge edge with its walls and the truth.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-fleetmerge=./build/cli/fleetmerge
-maps=../shared/data/maps
-out=${1:-out/lookalike}
-if [ ! -d "$maps" ]; then
-  echo "lookalike_accuracy: $maps is missing (the real building maps)" >&2
-  exit 1
-fi
-mkdir -p "$out"
-
-run_case() {  # name, then `fleetmerge simulate` options
-  local name=$1 dir=$out/$1
-  shift
-  rm -rf "$dir"
-  "$fleetmerge" simulate "$dir" --path-length 100 --robots 4 "$@" >/dev/null
-  "$fleetmerge" merge "$dir/job.yaml" --quiet >/dev/null
-  "$fleetmerge" eval "$dir/merged/report.json" "$dir/truth.yaml" --json >"$dir/eval.json"
-  python3 - "$name" "$dir/eval.json" <<'PY'
-import json, sys
-s = json.load(open(sys.argv[2]))["summary"]
-print(sys.argv[1], s["scored_pairs"], s["coarse_pairs"], s["fine_pairs"], s["false_merges"])
-PY
-}
+source scripts/simulated_cases.sh lookalike_accuracy "${1:-out/lookalike}"
 
 {
   for seed in ${LOOKALIKE_SEEDS:-$(seq 100 114)}; do
     for kind in ${LOOKALIKE_KINDS:-office office_little stata_intel gdc_floors}; do
       case $kind in
-        office) run_case "office_$seed" --seed "$seed" --foreign-office-seed $((seed + 1000)) ;;
+        office)
+          run_case "office_$seed" --robots 4 --seed "$seed" \
+            --foreign-office-seed $((seed + 1000)) ;;
         office_little)
-          run_case "office_little_$seed" --seed "$seed" --little-overlap \
+          run_case "office_little_$seed" --robots 4 --seed "$seed" --little-overlap \
             --foreign-office-seed $((seed + 1000)) ;;
         stata_intel)
-          run_case "stata_intel_$seed" --seed "$seed" --building "$maps/stata_basement.yaml" \
-            --foreign "$maps/intel_lab.yaml" ;;
+          run_case "stata_intel_$seed" --robots 4 --seed "$seed" \
+            --building "$maps/stata_basement.yaml" --foreign "$maps/intel_lab.yaml" ;;
         gdc_floors)
-          run_case "gdc_floors_$seed" --seed "$seed" --building "$maps/gdc_floor1_full.yaml" \
-            --foreign "$maps/gdc_floor2_full.yaml" ;;
+          run_case "gdc_floors_$seed" --robots 4 --seed "$seed" \
+            --building "$maps/gdc_floor1_full.yaml" --foreign "$maps/gdc_floor2_full.yaml" ;;
         *) echo "lookalike_accuracy: unknown kind '$kind'" >&2; exit 1 ;;
       esac
     done
