@@ -29,6 +29,8 @@ class WallDistanceCost : public ceres::CostFunction {
         points_(std::move(points)),
         inverse_(inverse),
         b_(loss_scale_cells * loss_scale_cells) {
+    const double truncation = static_cast<float>(target.truncation_cells());  // as the field
+    flat_residual_ = std::sqrt(b_ * std::log1p(truncation * truncation / b_));
     set_num_residuals(static_cast<int>(points_.size()));
     mutable_parameter_block_sizes()->push_back(3);
   }
@@ -56,7 +58,12 @@ class WallDistanceCost : public ceres::CostFunction {
             s, -c, -x;
       }
       double d = 0.0, dd_dx = 0.0, dd_dy = 0.0;
-      target_.Evaluate(x, y, &d, &dd_dx, &dd_dy);
+      if (target_.Evaluate(x, y, &d, &dd_dx, &dd_dy)) {
+        // No wall of the target near the point: the truncation's constant residual, no slope.
+        residuals[i] = flat_residual_;
+        if (jacobian != nullptr) std::fill_n(jacobian + 3 * i, 3, 0.0);
+        continue;
+      }
       // r = sign(d) sqrt(rho(d^2)); dr/dd = rho'(d^2) |d| / sqrt(rho(d^2)), which tends to 1
       // as d -> 0 (rho(s) ~ s there).
       const double squared = d * d;
@@ -77,7 +84,8 @@ class WallDistanceCost : public ceres::CostFunction {
   const WallDistanceField& target_;
   std::vector<Eigen::Vector2d> points_;
   bool inverse_;
-  double b_;  // Cauchy scale squared
+  double b_;              // Cauchy scale squared
+  double flat_residual_;  // the residual where the field is flat (at the truncation value)
 };
 
 std::vector<Eigen::Vector2d> WallPoints(const OccupancyGrid& grid) {

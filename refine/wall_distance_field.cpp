@@ -41,6 +41,12 @@ WallDistanceField::WallDistanceField(const OccupancyGrid& grid, double truncatio
       cell = std::min(cell, d);
     }
   }
+  // Stencil rows floor(r) - 1 .. floor(r) + 2 (and columns): a 4 x 4 dilation anchored at
+  // (1, 1) of the cells below the truncation value, the border replicated as the grid does.
+  const cv::Mat1b near = distances_ < static_cast<float>(truncation_cells);
+  cv::Mat1b stencil_near;
+  cv::dilate(near, stencil_near, cv::Mat1b::ones(4, 4), cv::Point(1, 1), 1, cv::BORDER_REPLICATE);
+  flat_ = stencil_near == 0;
   grid_ = std::make_unique<Grid>(distances_.ptr<float>(), 0, distances_.rows, 0, distances_.cols);
   interpolator_ = std::make_unique<Interpolator>(*grid_);
 }

@@ -6,6 +6,8 @@
 #include <ceres/cubic_interpolation.h>
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -34,17 +36,42 @@ class WallDistanceField {
     interpolator_->Evaluate(y_cells - (offset_.y() + 0.5), x_cells - (offset_.x() + 0.5), distance);
   }
   // The same with the gradient (d distance / d x, d distance / d y), for analytic Jacobians.
-  void Evaluate(double x_cells, double y_cells, double* distance, double* d_dx,
+  // Returns true where the field is flat (the truncation value, gradient 0): there the
+  // interpolation is skipped, with the result it would have given (bicubic Hermite splines
+  // through equal samples are that value exactly, slope 0).
+  bool Evaluate(double x_cells, double y_cells, double* distance, double* d_dx,
                 double* d_dy) const {
-    interpolator_->Evaluate(y_cells - (offset_.y() + 0.5), x_cells - (offset_.x() + 0.5), distance,
-                            d_dy, d_dx);
+    const double r = y_cells - (offset_.y() + 0.5), c = x_cells - (offset_.x() + 0.5);
+    if (IsFlat(r, c)) {
+      *distance = static_cast<double>(static_cast<float>(truncation_cells_));
+      *d_dx = *d_dy = 0.0;
+      return true;
+    }
+    interpolator_->Evaluate(r, c, distance, d_dy, d_dx);
+    return false;
   }
   double truncation_cells() const { return truncation_cells_; }
 
  private:
+  // Whether the 4 x 4 samples the interpolator reads at (r, c) (rows floor(r) - 1 ..
+  // floor(r) + 2, clamped at the border) are all the truncation value. Most wall points of a
+  // pair lie where the other map has no wall nearby (the maps overlap in part): perf put the
+  // interpolation at 10-15 % of a fleet merge.
+  bool IsFlat(double r, double c) const {
+    if (!(r > -2.0 && r < flat_.rows + 1.0 && c > -2.0 && c < flat_.cols + 1.0)) {
+      // Beyond the border the samples repeat it, which is the truncation value. NaN lands here
+      // too: flat, where Ceres would convert floor(NaN) to int (undefined behaviour).
+      return true;
+    }
+    // A stencil clamped at the border reads a subset of the clamped cell's own stencil.
+    const int row = std::clamp(static_cast<int>(std::floor(r)), 0, flat_.rows - 1);
+    const int col = std::clamp(static_cast<int>(std::floor(c)), 0, flat_.cols - 1);
+    return flat_(row, col) != 0;
+  }
   double truncation_cells_;
   Eigen::Array2i offset_;  // grid cell of distances_(0, 0)
   cv::Mat1f distances_;    // row r, column c = grid cell (c + offset_.x, r + offset_.y)
+  cv::Mat1b flat_;         // 1 where the interpolation stencil at (r, c) is all truncation
   std::unique_ptr<Grid> grid_;
   std::unique_ptr<Interpolator> interpolator_;
 };
