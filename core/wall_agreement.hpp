@@ -7,7 +7,9 @@
 // real maps, 0.98-1.00 for correct alignments and 0.06-0.63 for wrong ones (docs/method.md).
 #pragma once
 
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
+#include <vector>
 
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
@@ -31,7 +33,23 @@ cv::Mat1b NearWallMask(const OccupancyGrid& grid);
 double WallAgreement(const OccupancyGrid& a, const cv::Mat1b& a_near_walls, const OccupancyGrid& b,
                      const Pose2& T_ga_gb);
 
+// WallAgreement with b given by its occupied cell centres (OccupiedCellCenters(b), any order):
+// the same count without scanning all of b's cells for its few walls on every call.
+double WallAgreement(const OccupancyGrid& a, const cv::Mat1b& a_near_walls,
+                     const std::vector<Eigen::Vector2f>& b_wall_centres, const Pose2& T_ga_gb);
+
 // min(WallAgreement(a, b, T), WallAgreement(b, a, T^-1)): both maps' walls must agree.
 double SymmetricWallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb);
+
+// One map's side of the wall agreement, computed once per map where it is judged in many pairs.
+struct MapWalls {
+  explicit MapWalls(const OccupancyGrid& grid);  // keeps a reference to `grid`
+  const OccupancyGrid& grid;
+  std::vector<Eigen::Vector2f> centres;  // OccupiedCellCenters(grid)
+  cv::Mat1b near_walls;                  // NearWallMask(grid)
+};
+
+// SymmetricWallAgreement of two maps' precomputed walls: the same value.
+double SymmetricWallAgreement(const MapWalls& a, const MapWalls& b, const Pose2& T_ga_gb);
 
 }  // namespace fleetmerge

@@ -4,8 +4,10 @@
 #include <cmath>
 
 #include "core/acceptance_index.hpp"
+#include "core/error.hpp"
 #include "core/hypothesis_generator.hpp"
 #include "core/wall_agreement.hpp"
+#include "pipeline/parallel.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -28,25 +30,32 @@ bool SomeHypothesisAgrees(const PairOutcome& pair, int n, const Pose2& T_n_m,
 }  // namespace
 
 std::vector<PairVerdict> JudgeSolvedPairs(const std::vector<OccupancyGrid>& maps,
+                                          const std::vector<MapWalls>& walls,
                                           const std::vector<PairOutcome>& pairs,
                                           const FleetGraph& graph, std::int64_t min_overlap_cells,
                                           double min_wall_agreement,
-                                          const PoseGraphOptions& options) {
-  std::vector<PairVerdict> verdicts;
-  for (const PairOutcome& pair : pairs) {
+                                          const PoseGraphOptions& options, int threads) {
+  if (walls.size() != maps.size()) throw Error("internal: wall features for another fleet");
+  std::vector<std::optional<PairVerdict>> judged(pairs.size());
+  ParallelFor(pairs.size(), threads, [&](std::size_t k) {
+    const PairOutcome& pair = pairs[k];
     const int a = pair.a, b = pair.b;
-    if (graph.component_of[a] != graph.component_of[b]) continue;
+    if (graph.component_of[a] != graph.component_of[b]) return;
     const Pose2 T_a_b = graph.T_component_map[a].inverse() * graph.T_component_map[b];
     const Pose2 T_ga_gb = CellPoseFromMapPose(maps[a].geometry(), maps[b].geometry(), T_a_b);
     const Agreement overlap = CountAgreement(maps[a], maps[b], T_ga_gb, 2);
     // Stride 2 visits a quarter of b's cells.
-    if (4 * (overlap.agree + overlap.disagree) < min_overlap_cells) continue;
+    if (4 * (overlap.agree + overlap.disagree) < min_overlap_cells) return;
     // A pair search can miss a true pose where the maps share little; the walls at the solved
     // pose then still agree.
-    const double walls = SymmetricWallAgreement(maps[a], maps[b], T_ga_gb);
+    const double wall_agreement = SymmetricWallAgreement(walls[a], walls[b], T_ga_gb);
     const bool agrees =
-        SomeHypothesisAgrees(pair, a, T_a_b, options) || walls >= min_wall_agreement;
-    verdicts.push_back({a, b, agrees, walls});
+        SomeHypothesisAgrees(pair, a, T_a_b, options) || wall_agreement >= min_wall_agreement;
+    judged[k] = PairVerdict{a, b, agrees, wall_agreement};
+  });
+  std::vector<PairVerdict> verdicts;
+  for (const auto& v : judged) {
+    if (v) verdicts.push_back(*v);
   }
   return verdicts;
 }

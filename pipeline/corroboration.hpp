@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/occupancy_grid.hpp"
+#include "core/wall_agreement.hpp"
 #include "pipeline/all_pairs.hpp"
 #include "pipeline/fleet_graph.hpp"
 #include "refine/pose_graph.hpp"
@@ -32,11 +33,15 @@ struct PairVerdict {
   double wall_agreement = 0.0;  // at the solved poses (core/wall_agreement.hpp)
 };
 
+// `walls` holds MapWalls(maps[m]) for every map (made once: the judging runs every round of
+// the fleet's checks). The pairs are judged on `threads` threads (<= 0: all cores); the verdicts
+// are the same, in pair order, for any count.
 std::vector<PairVerdict> JudgeSolvedPairs(const std::vector<OccupancyGrid>& maps,
+                                          const std::vector<MapWalls>& walls,
                                           const std::vector<PairOutcome>& pairs,
                                           const FleetGraph& graph, std::int64_t min_overlap_cells,
                                           double min_wall_agreement,
-                                          const PoseGraphOptions& options);
+                                          const PoseGraphOptions& options, int threads = 1);
 
 // A split of one component in two: the maps of the smaller side, and the verdicts of the pairs
 // across it.

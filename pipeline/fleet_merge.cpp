@@ -119,6 +119,9 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   AcceptByThreshold(result.pairs, options);
   FleetGraph graph =
       SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph);
+  std::vector<MapWalls> walls;  // made once: every round judges the pairs again
+  walls.reserve(result.maps.size());
+  for (const OccupancyGrid& map : result.maps) walls.emplace_back(map);
   // Each round rejects at least one edge, so this ends.
   for (std::size_t round = 0; round <= result.pairs.size(); ++round) {
     if (const auto weak = WeakestBridge(static_cast<int>(maps.size()), result.pairs,
@@ -126,8 +129,8 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
       RejectWeakBridge(options.min_bridge_wall_agreement, result.pairs[*weak]);
     } else {
       const auto verdicts =
-          JudgeSolvedPairs(result.maps, result.pairs, graph, options.min_overlap_cells,
-                           options.min_wall_agreement, options.pose_graph);
+          JudgeSolvedPairs(result.maps, walls, result.pairs, graph, options.min_overlap_cells,
+                           options.min_wall_agreement, options.pose_graph, options.threads);
       const auto split = MostContradictedSplit(verdicts, graph.component_of);
       if (!split) break;
       CutSplit(*split, result.pairs);

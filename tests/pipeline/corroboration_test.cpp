@@ -76,6 +76,8 @@ TEST_P(ForeignOffice, ChanceEdgeIsDetachedAndTheBuildingStaysWhole) {
   // foreign map is split off, and only it, wherever the robots that see the same place
   // contradict it more than they support it.
   int contradicted = 0, split_off = 0;
+  std::vector<MapWalls> walls;
+  for (const OccupancyGrid& map : c.result.maps) walls.emplace_back(map);
   for (const PairOutcome& p : c.result.pairs) {
     if (p.b != 4) continue;
     for (const PairHypothesis& h : p.hypotheses) {
@@ -83,7 +85,7 @@ TEST_P(ForeignOffice, ChanceEdgeIsDetachedAndTheBuildingStaysWhole) {
       forced.component_of[4] = forced.component_of[p.a];
       forced.T_component_map[4] = forced.T_component_map[p.a] * h.T_a_b;
       const auto verdicts =
-          JudgeSolvedPairs(c.result.maps, c.result.pairs, forced, defaults.min_overlap_cells,
+          JudgeSolvedPairs(c.result.maps, walls, c.result.pairs, forced, defaults.min_overlap_cells,
                            defaults.min_wall_agreement, defaults.pose_graph);
       const Tally foreign = TallyPerMap(verdicts, 5)[4];
       // Overlapping nobody enough, or supported by a robot that agrees by chance as often as
@@ -99,9 +101,10 @@ TEST_P(ForeignOffice, ChanceEdgeIsDetachedAndTheBuildingStaysWhole) {
 
   // After the step every map of the building is corroborated and the foreign one is alone.
   FleetGraph graph{c.result.component_of, {}, c.result.T_component_map};
+  // On two threads: the verdicts must not depend on the count.
   const auto verdicts =
-      JudgeSolvedPairs(c.result.maps, c.result.pairs, graph, defaults.min_overlap_cells,
-                       defaults.min_wall_agreement, defaults.pose_graph);
+      JudgeSolvedPairs(c.result.maps, walls, c.result.pairs, graph, defaults.min_overlap_cells,
+                       defaults.min_wall_agreement, defaults.pose_graph, /*threads=*/2);
   EXPECT_FALSE(MostContradictedSplit(verdicts, graph.component_of).has_value());
   const auto per_map = TallyPerMap(verdicts, 5);
   for (int m = 0; m < 4; ++m) {
