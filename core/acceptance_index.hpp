@@ -27,10 +27,15 @@ struct Agreement {
   }
 };
 
-// Per row of a grid, the half-open column range [first, last + 1) holding its known cells. Maps
-// re-framed by a rotation are mostly unknown around a tilted footprint: walking only these
-// spans makes omega several times cheaper, and they are computed once per map.
-using RowSpans = std::vector<std::pair<int, int>>;
+// Per row of a grid, its runs of consecutive known cells, each a half-open column range
+// [first, last + 1). Maps re-framed by a rotation are mostly unknown around a tilted footprint,
+// and inside it a robot's map knows only the corridors and rooms it saw (27-46 % of each row's
+// extent in the simulated ACES fleet): walking only the runs makes omega several times cheaper.
+// Computed once per map.
+struct RowSpans {
+  std::vector<int> row_begin;             // row j's runs: runs[row_begin[j] .. row_begin[j + 1])
+  std::vector<std::pair<int, int>> runs;  // rows bottom to top, each row's runs left to right
+};
 RowSpans KnownRowSpans(const OccupancyGrid& grid);
 
 // Counts agreement of `a` with `b` placed by T_ga_gb, the pose of b's grid frame in a's grid
