@@ -7,6 +7,7 @@
 #include <memory>
 #include <opencv2/imgproc.hpp>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace fleetmerge {
@@ -20,6 +21,7 @@ void Check(int error, const char* step) {
 
 constexpr std::uint8_t kGrey = 0;
 constexpr std::uint8_t kRgb = 2;
+constexpr std::uint8_t kIndexed = 3;
 constexpr std::uint8_t kRgba = 6;
 
 }  // namespace
@@ -51,6 +53,40 @@ cv::Mat DecodePng(const std::string& bytes) {
   return image;
 }
 
+namespace {
+
+// The encoder's settings (cv::imwrite's defaults) and its output, for `pixels` in the PNG's own
+// layout (SPNG_FMT_PNG: 16-bit samples host-endian). `before_image` may add chunks.
+template <typename AddChunks>
+std::string Encode(const cv::Mat& pixels, std::uint8_t color_type, const AddChunks& before_image) {
+  CV_Assert(pixels.isContinuous());
+  Context ctx(spng_ctx_new(SPNG_CTX_ENCODER), spng_ctx_free);
+  if (!ctx) throw std::runtime_error("libspng could not create an encoder");
+  Check(spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1), "PNG encoder");
+  Check(spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_LEVEL, 1), "PNG encoder");
+  Check(spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_STRATEGY, Z_RLE), "PNG encoder");
+  Check(spng_set_option(ctx.get(), SPNG_FILTER_CHOICE, SPNG_FILTER_CHOICE_SUB), "PNG encoder");
+  spng_ihdr ihdr{};
+  ihdr.width = static_cast<std::uint32_t>(pixels.cols);
+  ihdr.height = static_cast<std::uint32_t>(pixels.rows);
+  ihdr.bit_depth = pixels.depth() == CV_16U ? 16 : 8;
+  ihdr.color_type = color_type;
+  Check(spng_set_ihdr(ctx.get(), &ihdr), "PNG header");
+  before_image(ctx.get());
+  Check(spng_encode_image(ctx.get(), pixels.data, pixels.total() * pixels.elemSize(), SPNG_FMT_PNG,
+                          SPNG_ENCODE_FINALIZE),
+        "PNG encoding");
+  std::size_t length = 0;
+  int error = 0;
+  void* buffer = spng_get_png_buffer(ctx.get(), &length, &error);
+  Check(error, "PNG encoding");
+  std::string out(static_cast<const char*>(buffer), length);
+  std::free(buffer);
+  return out;
+}
+
+}  // namespace
+
 std::string EncodePng(const cv::Mat& image) {
   CV_Assert(image.depth() == CV_8U || image.depth() == CV_16U);
   CV_Assert(image.channels() == 1 || image.channels() == 3 || image.channels() == 4);
@@ -63,29 +99,34 @@ std::string EncodePng(const cv::Mat& image) {
     rgb = image.isContinuous() ? image : image.clone();
   }
   if (!rgb.isContinuous()) rgb = rgb.clone();
-  Context ctx(spng_ctx_new(SPNG_CTX_ENCODER), spng_ctx_free);
-  if (!ctx) throw std::runtime_error("libspng could not create an encoder");
-  Check(spng_set_option(ctx.get(), SPNG_ENCODE_TO_BUFFER, 1), "PNG encoder");
-  Check(spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_LEVEL, 1), "PNG encoder");
-  Check(spng_set_option(ctx.get(), SPNG_IMG_COMPRESSION_STRATEGY, Z_RLE), "PNG encoder");
-  Check(spng_set_option(ctx.get(), SPNG_FILTER_CHOICE, SPNG_FILTER_CHOICE_SUB), "PNG encoder");
-  spng_ihdr ihdr{};
-  ihdr.width = static_cast<std::uint32_t>(rgb.cols);
-  ihdr.height = static_cast<std::uint32_t>(rgb.rows);
-  ihdr.bit_depth = rgb.depth() == CV_16U ? 16 : 8;
-  ihdr.color_type = rgb.channels() == 1 ? kGrey : (rgb.channels() == 3 ? kRgb : kRgba);
-  Check(spng_set_ihdr(ctx.get(), &ihdr), "PNG header");
-  // SPNG_FMT_PNG: the buffer is in the PNG's own layout, 16-bit samples host-endian.
-  Check(spng_encode_image(ctx.get(), rgb.data, rgb.total() * rgb.elemSize(), SPNG_FMT_PNG,
-                          SPNG_ENCODE_FINALIZE),
-        "PNG encoding");
-  std::size_t length = 0;
-  int error = 0;
-  void* buffer = spng_get_png_buffer(ctx.get(), &length, &error);
-  Check(error, "PNG encoding");
-  std::string out(static_cast<const char*>(buffer), length);
-  std::free(buffer);
-  return out;
+  const std::uint8_t type = rgb.channels() == 1 ? kGrey : (rgb.channels() == 3 ? kRgb : kRgba);
+  return Encode(rgb, type, [](spng_ctx*) {});
+}
+
+std::string EncodeIndexedPng(const cv::Mat1b& indices, const std::vector<cv::Vec4b>& palette_rgba) {
+  if (palette_rgba.empty() || palette_rgba.size() > 256) {
+    throw std::runtime_error("PNG palette: 1 to 256 colours, got " +
+                             std::to_string(palette_rgba.size()));
+  }
+  double max_index = 0.0;
+  if (!indices.empty()) cv::minMaxLoc(indices, nullptr, &max_index);
+  if (max_index >= static_cast<double>(palette_rgba.size())) {
+    throw std::runtime_error("PNG palette: index " + std::to_string(int(max_index)) +
+                             " beyond its " + std::to_string(palette_rgba.size()) + " colours");
+  }
+  const cv::Mat1b pixels = indices.isContinuous() ? indices : indices.clone();
+  return Encode(pixels, kIndexed, [&](spng_ctx* ctx) {
+    spng_plte plte{};
+    spng_trns trns{};
+    plte.n_entries = static_cast<std::uint32_t>(palette_rgba.size());
+    trns.n_type3_entries = plte.n_entries;
+    for (std::size_t k = 0; k < palette_rgba.size(); ++k) {
+      plte.entries[k] = {palette_rgba[k][0], palette_rgba[k][1], palette_rgba[k][2], 0};
+      trns.type3_alpha[k] = palette_rgba[k][3];
+    }
+    Check(spng_set_plte(ctx, &plte), "PNG palette");
+    Check(spng_set_trns(ctx, &trns), "PNG transparency");
+  });
 }
 
 }  // namespace fleetmerge

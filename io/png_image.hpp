@@ -4,6 +4,7 @@
 
 #include <opencv2/core.hpp>
 #include <string>
+#include <vector>
 
 namespace fleetmerge {
 
@@ -18,5 +19,10 @@ cv::Mat DecodePng(const std::string& bytes);
 // written like cv::imwrite's default (zlib level 1, RLE strategy, "sub" filter: fast, and
 // maps compress well anyway).
 std::string EncodePng(const cv::Mat& image);
+
+// Palette PNG (PLTE and tRNS chunks) of 8-bit `indices` into `palette_rgba` (R, G, B, A; 1 to
+// 256 colours): decoded, the RGBA image of the palette's colours. One byte a pixel to filter and
+// compress where RGBA takes four. Throws std::runtime_error for an index beyond the palette.
+std::string EncodeIndexedPng(const cv::Mat1b& indices, const std::vector<cv::Vec4b>& palette_rgba);
 
 }  // namespace fleetmerge

@@ -186,6 +186,32 @@ TEST(ImageCodecsTest, EncodedImagesDecodeToThemselvesInOpenCv) {
   }
 }
 
+TEST(ImageCodecsTest, IndexedPngDecodesToItsPaletteColoursInOpenCvAndOurs) {
+  std::mt19937 rng(17);
+  // Opaque, transparent and half-transparent entries; indices spread over all of them.
+  const std::vector<cv::Vec4b> palette_rgba = {cv::Vec4b(0, 0, 0, 0), cv::Vec4b(235, 235, 235, 255),
+                                               cv::Vec4b(0, 0, 0, 255),
+                                               cv::Vec4b(10, 200, 30, 128)};
+  cv::Mat1b indices(37, 53);
+  for (auto& v : indices) v = static_cast<std::uint8_t>(rng() % palette_rgba.size());
+  cv::Mat4b want_bgra(indices.size());
+  for (int r = 0; r < indices.rows; ++r) {
+    for (int c = 0; c < indices.cols; ++c) {
+      const cv::Vec4b rgba = palette_rgba[indices(r, c)];
+      want_bgra(r, c) = cv::Vec4b(rgba[2], rgba[1], rgba[0], rgba[3]);
+    }
+  }
+  const std::string png = EncodeIndexedPng(indices, palette_rgba);
+  const cv::Mat back =
+      cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_UNCHANGED);
+  ExpectSameSamples(back, want_bgra, "palette PNG in OpenCV");
+  ExpectSameSamples(DecodePng(png), AsRgba(want_bgra), "palette PNG in ours");
+  // An index beyond the palette is refused, not written.
+  indices(3, 4) = 4;
+  EXPECT_THROW(EncodeIndexedPng(indices, palette_rgba), std::runtime_error);
+  EXPECT_THROW(EncodeIndexedPng(indices, {}), std::runtime_error);
+}
+
 TEST(ImageCodecsTest, PngErrorsCarryLibspngsReason) {
   std::mt19937 rng(5);
   const cv::Mat image = RandomImage(CV_8UC1, rng);
