@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "pipeline/parallel.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -163,31 +164,44 @@ OccupancyGrid SampleOnto(const CompositeInput& input, const GridGeometry& target
 }
 
 OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolution_m,
-                        FusionMode mode) {
+                        FusionMode mode, int threads) {
   ValidateInputs(inputs, resolution_m);
   const GridGeometry geometry = MergedGeometry(inputs, resolution_m);
   const cv::Size size(geometry.width(), geometry.height());
-  cv::Mat1w occupied_count = cv::Mat1w::zeros(size);
-  cv::Mat1w free_count = cv::Mat1w::zeros(size);
-  cv::Mat1b sampled(size);  // scratch reused per input; only each input's region is touched
+  std::vector<CellAffine> affines;
+  std::vector<cv::Rect> regions;
   for (const CompositeInput& input : inputs) {
-    const cv::Rect region = TargetRegionOfInput(input, geometry);
-    if (region.area() == 0) continue;
-    sampled(region).setTo(static_cast<std::uint8_t>(CellState::kUnknown));
-    SampleRegion(input, TargetToInputCells(input, geometry), region, sampled);
-    cv::add(occupied_count(region), 1, occupied_count(region),
-            sampled(region) == static_cast<std::uint8_t>(CellState::kOccupied));
-    cv::add(free_count(region), 1, free_count(region),
-            sampled(region) == static_cast<std::uint8_t>(CellState::kFree));
+    affines.push_back(TargetToInputCells(input, geometry));
+    regions.push_back(TargetRegionOfInput(input, geometry));
   }
   OccupancyGrid merged(geometry);
-  for (int j = 0; j < size.height; ++j) {
-    const std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j);
-    const std::uint16_t* free_row = free_count.ptr<std::uint16_t>(j);
-    for (int i = 0; i < size.width; ++i) {
-      merged.set({i, j}, Fuse(occupied_row[i], free_row[i], mode));
+  cv::Mat1w occupied_count = cv::Mat1w::zeros(size);
+  cv::Mat1w free_count = cv::Mat1w::zeros(size);
+  cv::Mat1b sampled(size);  // scratch; only each input's region is touched
+  // Each band of rows is fused from every input's part in it; the bands touch disjoint rows.
+  constexpr int kBandRows = 64;
+  const int bands = (size.height + kBandRows - 1) / kBandRows;
+  ParallelFor(static_cast<std::size_t>(bands), threads, [&](std::size_t band_index) {
+    const int y0 = static_cast<int>(band_index) * kBandRows;
+    const cv::Rect band(0, y0, size.width, std::min(kBandRows, size.height - y0));
+    for (std::size_t k = 0; k < inputs.size(); ++k) {
+      const cv::Rect region = regions[k] & band;
+      if (region.area() == 0) continue;
+      sampled(region).setTo(static_cast<std::uint8_t>(CellState::kUnknown));
+      SampleRegion(inputs[k], affines[k], region, sampled);
+      cv::add(occupied_count(region), 1, occupied_count(region),
+              sampled(region) == static_cast<std::uint8_t>(CellState::kOccupied));
+      cv::add(free_count(region), 1, free_count(region),
+              sampled(region) == static_cast<std::uint8_t>(CellState::kFree));
     }
-  }
+    for (int j = band.y; j < band.y + band.height; ++j) {
+      const std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j);
+      const std::uint16_t* free_row = free_count.ptr<std::uint16_t>(j);
+      for (int i = 0; i < size.width; ++i) {
+        merged.set({i, j}, Fuse(occupied_row[i], free_row[i], mode));
+      }
+    }
+  });
   return merged;
 }
 

@@ -44,8 +44,10 @@ struct CompositeInput {
 
 // The merged grid at resolution_m. With no known cell in any input it is an empty (0 x 0) grid.
 // Throws fleetmerge::Error unless resolution_m is a finite number > 0 and every grid is set.
+// Bands of merged rows are fused on `threads` threads (<= 0: all cores): the same grid for any
+// count.
 OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolution_m,
-                        FusionMode mode = FusionMode::kLogOdds);
+                        FusionMode mode = FusionMode::kLogOdds, int threads = 1);
 
 // One input's state at the centre of every cell of `target` (whose map frame is the merged
 // frame): the lookup Composite fuses, also used to colour previews. kUnknown where the centre

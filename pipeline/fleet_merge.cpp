@@ -159,7 +159,7 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
       // compositing would crop it to its known cells).
       component.merged = result.maps.front();
     } else if (inputs.size() >= 2) {
-      component.merged = Composite(inputs, result.resolution_m, options.fusion);
+      component.merged = Composite(inputs, result.resolution_m, options.fusion, options.threads);
     }
     if (progress) progress("composite", static_cast<int>(c) + 1, int(result.components.size()));
   }

@@ -35,7 +35,7 @@ std::vector<std::string> MergedFileNames(const FleetResult& result) {
 // merged map file name (MergedFileNames) and appends every file written to `written`.
 std::vector<std::string> WriteOutputs(const std::filesystem::path& dir, const FleetResult& result,
                                       const std::vector<std::filesystem::path>& protect,
-                                      std::vector<std::string>& written) {
+                                      int threads, std::vector<std::string>& written) {
   const std::vector<std::string> files = MergedFileNames(result);
   for (std::size_t c = 0; c < result.components.size(); ++c) {
     const FleetComponent& component = result.components[c];
@@ -44,7 +44,8 @@ std::vector<std::string> WriteOutputs(const std::filesystem::path& dir, const Fl
     SaveMap(*component.merged, dir / files[c], protect);
     std::vector<CompositeInput> inputs;
     for (int m : component.maps) inputs.push_back({&result.maps[m], result.T_component_map[m]});
-    SaveImage(ColourPreview(inputs, *component.merged), dir / (stem + "_preview.png"), protect);
+    SaveImage(ColourPreview(inputs, *component.merged, threads), dir / (stem + "_preview.png"),
+              protect);
     written.insert(written.end(), {files[c], stem + ".pgm", stem + "_preview.png"});
   }
   return files;
@@ -146,7 +147,7 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
   std::vector<std::string> files;
   OctreeOutputs octree_outputs;
   if (folder) {
-    files = WriteOutputs(folder->staging_dir(), result, protect, written);
+    files = WriteOutputs(folder->staging_dir(), result, protect, job.options.threads, written);
     octree_outputs = WriteMergedOctrees(result, job_octrees, folder->staging_dir(), protect);
     for (const auto& f : octree_outputs.merged_files) {
       if (!f.empty()) written.push_back(f);

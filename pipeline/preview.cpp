@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include "pipeline/parallel.hpp"
+
 namespace fleetmerge {
 namespace {
 
@@ -55,21 +57,22 @@ cv::Vec3b PaletteColour(int input_index) {
   return kPaletteBgr[((input_index % n) + n) % n];
 }
 
-cv::Mat3b ColourPreview(const std::vector<CompositeInput>& inputs, const OccupancyGrid& merged) {
-  std::vector<cv::Mat1b> sampled;
-  sampled.reserve(inputs.size());
-  for (const CompositeInput& input : inputs) {
-    sampled.push_back(SampleOnto(input, merged.geometry()).cells());
-  }
+cv::Mat3b ColourPreview(const std::vector<CompositeInput>& inputs, const OccupancyGrid& merged,
+                        int threads) {
+  std::vector<cv::Mat1b> sampled(inputs.size());
+  ParallelFor(inputs.size(), threads, [&](std::size_t k) {
+    sampled[k] = SampleOnto(inputs[k], merged.geometry()).cells();
+  });
   const int height = merged.height();
   cv::Mat3b image(height, merged.width());
-  for (int j = 0; j < height; ++j) {
+  ParallelFor(static_cast<std::size_t>(height), threads, [&](std::size_t row) {
+    const int j = static_cast<int>(row);
     // Grid rows count up from the bottom, image rows down from the top: flip.
     cv::Vec3b* image_row = image.ptr<cv::Vec3b>(height - 1 - j);
     for (int i = 0; i < merged.width(); ++i) {
       image_row[i] = PixelColour(sampled, j, i, merged.at({i, j}));
     }
-  }
+  });
   return image;
 }
 

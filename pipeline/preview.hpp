@@ -25,6 +25,8 @@ inline const cv::Vec3b kPreviewOccupiedByNone(0, 0, 0);  // occupied in `merged`
 // An image of `merged` (as made by Composite from `inputs`) with image row 0 at the TOP (highest
 // y), ready for cv::imwrite: the grid's row j is image row height - 1 - j. The category of each
 // pixel (unknown / free / occupied) comes from `merged`; the colours from the inputs.
-cv::Mat3b ColourPreview(const std::vector<CompositeInput>& inputs, const OccupancyGrid& merged);
+// The inputs are sampled, and the rows coloured, on `threads` threads (<= 0: all cores).
+cv::Mat3b ColourPreview(const std::vector<CompositeInput>& inputs, const OccupancyGrid& merged,
+                        int threads = 1);
 
 }  // namespace fleetmerge

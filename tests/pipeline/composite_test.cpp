@@ -221,6 +221,32 @@ TEST(Composite, EightOfficeMapsOf600By600CompositeQuickly) {
   EXPECT_LT(best_ms, 1000.0);  // loose: the machine is shared; the target is well under 100 ms
 }
 
+TEST(Composite, MergedGridAndPreviewAreTheSameForAnyThreadCount) {
+  OfficeOptions options;
+  options.width_m = 20.0;
+  options.height_m = 15.0;
+  std::vector<OccupancyGrid> maps;
+  std::vector<CompositeInput> inputs;
+  std::mt19937 rng(7);
+  for (std::uint32_t k = 0; k < 5; ++k) maps.push_back(GenerateOfficeFloor(options, k));
+  for (const OccupancyGrid& map : maps) {
+    inputs.push_back(
+        {&map, Pose2(Uniform(rng, -5, 5), Uniform(rng, -5, 5), Uniform(rng, -M_PI, M_PI))});
+  }
+  const OccupancyGrid one = Composite(inputs, 0.05, FusionMode::kLogOdds, 1);
+  ASSERT_GT(one.height(), 64 * 3);  // several bands of rows
+  const cv::Mat3b preview_one = ColourPreview(inputs, one, 1);
+  for (const int threads : {2, 3, 0}) {
+    const OccupancyGrid many = Composite(inputs, 0.05, FusionMode::kLogOdds, threads);
+    ASSERT_EQ(many.cells().size(), one.cells().size());
+    EXPECT_EQ(cv::countNonZero(many.cells() != one.cells()), 0) << threads << " threads";
+    const cv::Mat3b preview = ColourPreview(inputs, one, threads);
+    cv::Mat difference;
+    cv::absdiff(preview, preview_one, difference);
+    EXPECT_EQ(cv::countNonZero(difference.reshape(1)), 0) << threads << " threads";
+  }
+}
+
 TEST(ColourPreview, ColoursEachMapAndPutsTheHighestRowOnTop) {
   // a: 4 x 3 free cells at the origin with its top-left cell occupied; b: the same size 1 m to the
   // right with its bottom-right cell occupied. Merged: 16 x 5 cells with the margin.
