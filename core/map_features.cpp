@@ -9,14 +9,13 @@
 namespace fleetmerge {
 
 MapFeatures::MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& options)
-    : grid(grid),
-      occupied(OccupiedCellCenters(grid)),
-      free(options.translation.method == TranslationMethod::kCorrelation2D
-               ? CellCenters(grid, CellState::kFree)
-               : std::vector<Eigen::Vector2f>{}),
-      spectra_points(SamplePoints(occupied, options.spectra_sampling)),
-      known_spans(KnownRowSpans(grid)),
-      near_walls(NearWallMask(grid)) {
+    : grid(grid), known_spans(KnownRowSpans(grid)), near_walls(NearWallMask(grid)) {
+  if (options.translation.method == TranslationMethod::kCorrelation2D) {
+    OccupiedAndFreeCellCenters(grid, &occupied, &free);  // the search also needs open space
+  } else {
+    occupied = OccupiedCellCenters(grid);
+  }
+  spectra_points = SamplePoints(occupied, options.spectra_sampling);
   if (!occupied.empty()) {
     hough_spectrum = HoughSpectrum(
         ComputeHoughTransform(SamplePoints(occupied, options.hough_sampling), options.hough));

@@ -33,6 +33,31 @@ std::vector<Eigen::Vector2f> CellCenters(const OccupancyGrid& grid, CellState st
   return points;
 }
 
+void OccupiedAndFreeCellCenters(const OccupancyGrid& grid, std::vector<Eigen::Vector2f>* occupied,
+                                std::vector<Eigen::Vector2f>* free) {
+  const auto occupied_state = static_cast<std::uint8_t>(CellState::kOccupied);
+  const auto free_state = static_cast<std::uint8_t>(CellState::kFree);
+  std::size_t occupied_count = 0, free_count = 0;
+  for (int j = 0; j < grid.height(); ++j) {
+    const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
+    for (int i = 0; i < grid.width(); ++i) {
+      occupied_count += row[i] == occupied_state;
+      free_count += row[i] == free_state;
+    }
+  }
+  occupied->clear();
+  free->clear();
+  occupied->reserve(occupied_count);
+  free->reserve(free_count);
+  for (int j = 0; j < grid.height(); ++j) {
+    const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
+    for (int i = 0; i < grid.width(); ++i) {
+      if (row[i] == occupied_state) occupied->emplace_back(i + 0.5f, j + 0.5f);
+      if (row[i] == free_state) free->emplace_back(i + 0.5f, j + 0.5f);
+    }
+  }
+}
+
 std::vector<Eigen::Vector2f> SamplePoints(const std::vector<Eigen::Vector2f>& points,
                                           const SamplingOptions& options) {
   switch (options.mode) {

@@ -28,6 +28,11 @@ std::vector<Eigen::Vector2f> OccupiedCellCenters(const OccupancyGrid& grid);
 // The same for the cells in `state`.
 std::vector<Eigen::Vector2f> CellCenters(const OccupancyGrid& grid, CellState state);
 
+// CellCenters for kOccupied and kFree from one pass over the grid's cells (counting) and one
+// more (filling), instead of two each: the same two lists.
+void OccupiedAndFreeCellCenters(const OccupancyGrid& grid, std::vector<Eigen::Vector2f>* occupied,
+                                std::vector<Eigen::Vector2f>* free);
+
 // The subset of `points` chosen by `options` (order preserved). Throws fleetmerge::Error for a
 // fraction outside (0, 1] or a step < 1.
 std::vector<Eigen::Vector2f> SamplePoints(const std::vector<Eigen::Vector2f>& points,

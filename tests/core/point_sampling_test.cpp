@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "core/error.hpp"
 
 namespace fleetmerge {
@@ -56,6 +58,18 @@ TEST(OccupiedCellCenters, UsesCellCentresFromTheBottomRow) {
   ASSERT_EQ(p.size(), 2u);
   EXPECT_EQ(p[0], Eigen::Vector2f(3.5f, 0.5f));
   EXPECT_EQ(p[1], Eigen::Vector2f(1.5f, 2.5f));
+}
+
+TEST(OccupiedAndFreeCellCenters, GivesBothListsInScanOrderLikeCellCenters) {
+  std::mt19937 rng(3);
+  OccupancyGrid g(GridGeometry(0.05, {37, 29}));
+  for (int j = 0; j < g.height(); ++j)
+    for (int i = 0; i < g.width(); ++i) g.set({i, j}, static_cast<CellState>(rng() % 3));
+  std::vector<Eigen::Vector2f> occupied = {Eigen::Vector2f(9, 9)}, free;  // replaced
+  OccupiedAndFreeCellCenters(g, &occupied, &free);
+  EXPECT_EQ(occupied, CellCenters(g, CellState::kOccupied));
+  EXPECT_EQ(free, CellCenters(g, CellState::kFree));
+  EXPECT_EQ(occupied.size() + free.size() + g.Count(CellState::kUnknown), 37u * 29u);
 }
 
 }  // namespace
