@@ -16,7 +16,7 @@
 #include "pipeline/job_run.hpp"
 #include "pipeline/octree_maps.hpp"
 #include "pipeline/pair_merge.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 
 #ifndef FLEETMERGE_VERSION
 #error "FLEETMERGE_VERSION must be defined by the build"

@@ -17,7 +17,7 @@
 #include "io/job_file.hpp"
 #include "io/map_io.hpp"
 #include "io/simulated_case_file.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 #include "sim/simulation.hpp"
 
 namespace fleetmerge {

@@ -12,7 +12,7 @@
 #include "core/error.hpp"
 #include "io/job_file.hpp"
 #include "pipeline/job_run.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 
     namespace fleetmerge {
   namespace {

@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 #include "io/map_io.hpp"
 #include "io/simulated_case_file.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 #include "sim/simulation.hpp"
 
 namespace fleetmerge {

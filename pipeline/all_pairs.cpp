@@ -8,7 +8,7 @@
 #include "core/hypothesis_generator.hpp"
 #include "core/map_features.hpp"
 #include "core/wall_agreement.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 #include "pipeline/prepared_map.hpp"
 
 namespace fleetmerge {

@@ -7,7 +7,7 @@
 #include "core/error.hpp"
 #include "core/hypothesis_generator.hpp"
 #include "core/wall_agreement.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace fleetmerge {
 namespace {

@@ -11,7 +11,7 @@
 #include "pipeline/composite.hpp"
 #include "pipeline/corroboration.hpp"
 #include "pipeline/fleet_graph.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 #include "pipeline/weak_bridges.hpp"
 
 namespace fleetmerge {

@@ -9,7 +9,7 @@
 #include "io/atomic_file.hpp"
 #include "io/png_image.hpp"
 #include "pipeline/html_report_template.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 #include "pipeline/preview.hpp"
 
 namespace fleetmerge {

@@ -13,7 +13,7 @@
 #include "io/result_folder.hpp"
 #include "pipeline/html_report.hpp"
 #include "pipeline/launch_files.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 #include "pipeline/preview.hpp"
 #include "pipeline/report_json.hpp"
 

@@ -9,7 +9,7 @@
 #include "io/octree_io.hpp"
 #include "octree/octree_merge.hpp"
 #include "octree/octree_projection.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace fleetmerge {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <array>
 
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 
 namespace fleetmerge {
 namespace {

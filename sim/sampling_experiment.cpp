@@ -8,7 +8,7 @@
 
 #include "core/error.hpp"
 #include "pipeline/pair_merge.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 #include "sim/ground_truth_pair.hpp"
 
 namespace fleetmerge {

@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 #include "sim/portable_rng.hpp"
 #include "sim/simulation_explore.hpp"
 #include "sim/simulation_robot.hpp"

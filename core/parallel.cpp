@@ -1,4 +1,4 @@
-#include "pipeline/parallel.hpp"
+#include "core/parallel.hpp"
 
 #include <algorithm>
 #include <atomic>

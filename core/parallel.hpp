@@ -1,4 +1,5 @@
-// The small concurrency and timing helpers the pipeline stages share.
+// The small concurrency and timing helpers the library shares (the pair search, the pipeline
+// stages).
 #pragma once
 
 #include <chrono>
