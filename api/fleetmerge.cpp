@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "io/bag_maps.hpp"
 #include "io/map_inputs.hpp"
 #include "io/map_io.hpp"
@@ -16,7 +17,6 @@
 #include "pipeline/job_run.hpp"
 #include "pipeline/octree_maps.hpp"
 #include "pipeline/pair_merge.hpp"
-#include "core/parallel.hpp"
 
 #ifndef FLEETMERGE_VERSION
 #error "FLEETMERGE_VERSION must be defined by the build"
@@ -231,7 +231,8 @@ std::vector<Hypothesis> Pair(const Map& a, const Map& b, const Options& options)
   const PairOptions pair_options = ToFleetOptions(options).pair;
   const OccupancyGrid grid_a = ToGrid(a), grid_b = ToGrid(b);
   std::vector<Hypothesis> out;
-  for (const PairHypothesis& h : MergePair(grid_a, grid_b, pair_options).hypotheses) {
+  for (const PairHypothesis& h :
+       MergePair(grid_a, grid_b, pair_options, options.threads).hypotheses) {
     out.push_back({h.T_a_b.x_m(), h.T_a_b.y_m(), h.T_a_b.yaw_rad(), h.omega});
   }
   return out;

@@ -35,6 +35,7 @@ int main(int argc, char** argv) {
   pair_app->add_option("-n", pair.hypotheses, "number of hypotheses")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
+  pair_app->add_option("--threads", pair.threads, "threads (0: all cores)")->capture_default_str();
   pair_app->add_flag("--json", pair.json, "print JSON instead of a table");
   pair_app->add_option("--out", pair.out_dir,
                        "also write the merged map of the best hypothesis into this folder");

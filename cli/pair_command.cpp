@@ -1,11 +1,14 @@
 #include "cli/pair_command.hpp"
 
 #include <cmath>
+#include <exception>
 #include <iomanip>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "io/map_inputs.hpp"
 #include "io/map_io.hpp"
 #include "io/resampled_size.hpp"
@@ -80,7 +83,8 @@ MergedFiles WriteMerged(const PairCommand& command, const LoadedMap& a, const Lo
   std::filesystem::create_directories(dir);
   const std::vector<CompositeInput> inputs = {{&a.grid, Pose2()},
                                               {&b.grid, result.hypotheses.front().T_a_b}};
-  const OccupancyGrid merged = Composite(inputs, result.resolution_m);
+  const OccupancyGrid merged =
+      Composite(inputs, result.resolution_m, FusionMode::kLogOdds, command.threads);
   std::vector<std::filesystem::path> protect;  // the inputs (a bag's map has no image path)
   for (const auto& p :
        {a.metadata.yaml_path, a.metadata.image_path, b.metadata.yaml_path, b.metadata.image_path}) {
@@ -88,8 +92,9 @@ MergedFiles WriteMerged(const PairCommand& command, const LoadedMap& a, const Lo
   }
   MergedFiles files{dir / "merged.yaml", dir / "merged_preview.png", dir / kHtmlReportName};
   SaveMap(merged, files.yaml, protect);
-  SaveImage(ColourPreview(inputs, merged), files.preview, protect);
-  WriteHtmlReport(PairPage(command, a, b, result, merged), dir, protect);  // the page last
+  SaveImage(ColourPreview(inputs, merged, command.threads), files.preview, protect);
+  WriteHtmlReport(PairPage(command, a, b, result, merged), dir, protect,  // the page last
+                  command.threads);
   return files;
 }
 
@@ -147,12 +152,25 @@ int RunPairCommand(const PairCommand& command, std::ostream& out) {
   const bool same =
       std::filesystem::equivalent(maps[0].path, maps[1].path, ec) && maps[0].topic == maps[1].topic;
   if (!same) maps = ExpandMapInputs(both);  // a map paired with itself keeps its one name
-  const LoadedMap a = LoadJobMap(maps[0]);
-  const LoadedMap b = LoadJobMap(maps[1]);
+  // Both maps loaded at once; a failure is reported for the first map that fails, in order.
+  std::optional<LoadedMap> loaded[2];
+  std::exception_ptr failures[2];
+  ParallelFor(2, command.threads, [&](std::size_t k) {
+    try {
+      loaded[k] = LoadJobMap(maps[k]);
+    } catch (...) {
+      failures[k] = std::current_exception();
+    }
+  });
+  for (const auto& failure : failures) {
+    if (failure) std::rethrow_exception(failure);
+  }
+  const LoadedMap& a = *loaded[0];
+  const LoadedMap& b = *loaded[1];
   CheckResampledSizes({&a, &b}, 0.0, kDefaultMaxMapCells);
   PairOptions options = command.options;
   options.hypotheses.max_hypotheses = command.hypotheses;
-  const PairResult result = MergePair(a.grid, b.grid, options);
+  const PairResult result = MergePair(a.grid, b.grid, options, command.threads);
 
   std::optional<MergedFiles> files;
   if (command.out_dir && !result.hypotheses.empty()) files = WriteMerged(command, a, b, result);

@@ -17,6 +17,7 @@ struct PairCommand {
   std::filesystem::path b_yaml;
   std::vector<std::string> topics;  // bags: the map topic to read (each input needs exactly one)
   int hypotheses = 4;               // -n
+  int threads = 0;                  // --threads: shared by the pair's work (0: all cores)
   bool json = false;
   std::optional<std::filesystem::path> out_dir;
   PairOptions options;

@@ -90,6 +90,16 @@ void FixedImageCorrelator::CorrelateSumAndHalfTurn(const std::vector<cv::Mat1f>&
   circular_(cv::Rect(0, 0, r->cols, r->rows)).copyTo(*r_half_turn);
 }
 
+FixedImageCorrelator FixedImageCorrelator::WithOwnBuffers() const {
+  FixedImageCorrelator copy(*this);  // cv::Mat copies share their pixels: drop the buffers
+  copy.padded_.release();
+  copy.circular_.release();
+  copy.b_spectra_.clear();
+  copy.product_.release();
+  copy.sum_.release();
+  return copy;
+}
+
 cv::Mat1f CrossCorrelateDirect(const cv::Mat1f& a, const cv::Mat1f& b) {
   cv::Mat1f out = cv::Mat1f::zeros(a.rows + b.rows - 1, a.cols + b.cols - 1);
   for (int r = 0; r < out.rows; ++r) {

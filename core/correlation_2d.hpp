@@ -41,6 +41,10 @@ class FixedImageCorrelator {
   void CorrelateSumAndHalfTurn(const std::vector<cv::Mat1f>& b_layers, cv::Mat1f* r,
                                cv::Mat1f* r_half_turn);
 
+  // A correlator for another thread: the same fixed spectra (shared, only read), work buffers
+  // of its own. The results are the same as this one's.
+  FixedImageCorrelator WithOwnBuffers() const;
+
  private:
   cv::Size a_size_;
   cv::Size max_b_size_;

@@ -4,12 +4,14 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "core/acceptance_index.hpp"
 #include "core/circular_correlation.hpp"
 #include "core/error.hpp"
 #include "core/map_features.hpp"
+#include "core/parallel.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -59,7 +61,7 @@ std::vector<CellHypothesis> GenerateHypotheses(const OccupancyGrid& a, const Occ
 }
 
 std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapFeatures& fb,
-                                               const HypothesisOptions& options) {
+                                               const HypothesisOptions& options, int threads) {
   const OccupancyGrid& a = fa.grid;
   const OccupancyGrid& b = fb.grid;
   CheckSameResolution(a, b);
@@ -82,22 +84,27 @@ std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapF
   struct RotatedB {
     std::vector<Eigen::Vector2f> scored_walls, walls, free;
   };
+  const std::size_t rotation_pairs = yaws.size() / 2;
   std::vector<RotatedB> rotated;
   std::unique_ptr<CorrelationTranslation> correlation;
   std::unique_ptr<XySpectraTranslation> spectra;
   if (options.translation.method == TranslationMethod::kCorrelation2D) {
     const int pooling = CorrelationPooling(a, b, options.translation);
-    cv::Size max_b_pixels(1, 1);
-    for (std::size_t k = 0; k + 1 < yaws.size(); k += 2) {
-      RotatedB r;
-      r.scored_walls = RotatePoints(b_spectra_points, yaws[k]);
-      if (sampled) r.walls = RotatePoints(b_points, yaws[k]);
-      r.free = RotatePoints(b_free_points, yaws[k]);
-      const cv::Size size = CorrelationTranslation::RasterSize(
+    rotated.resize(rotation_pairs);
+    std::vector<cv::Size> sizes(rotation_pairs);
+    ParallelFor(rotation_pairs, threads, [&](std::size_t pair_index) {
+      const double yaw = yaws[2 * pair_index];
+      RotatedB& r = rotated[pair_index];
+      r.scored_walls = RotatePoints(b_spectra_points, yaw);
+      if (sampled) r.walls = RotatePoints(b_points, yaw);
+      r.free = RotatePoints(b_free_points, yaw);
+      sizes[pair_index] = CorrelationTranslation::RasterSize(
           r.scored_walls, sampled ? r.walls : r.scored_walls, r.free, pooling);
+    });
+    cv::Size max_b_pixels(1, 1);
+    for (const cv::Size& size : sizes) {
       max_b_pixels.width = std::max(max_b_pixels.width, size.width);
       max_b_pixels.height = std::max(max_b_pixels.height, size.height);
-      rotated.push_back(std::move(r));
     }
     correlation =
         std::make_unique<CorrelationTranslation>(a, pooling, max_b_pixels, options.translation);
@@ -106,43 +113,53 @@ std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapF
                                                      options.translation);
   }
 
-  std::vector<CellHypothesis> candidates;
-  const auto add_candidates = [&](const std::vector<TranslationCandidate>& translations,
-                                  double yaw) {
-    for (const auto& t : translations) {
-      const Pose2 T_ga_gb(t.t_cells, yaw);
-      // Ranking pass on every other row and column: 4x cheaper, same order in practice (the
-      // overlap estimate scales by the 4 cells each visited one stands for).
-      const Agreement agreement = CountAgreement(a, b, T_ga_gb, 2, &b_spans);
-      candidates.push_back(
-          {T_ga_gb, agreement.omega(), 4 * (agreement.agree + agreement.disagree)});
-    }
-  };
-  // The correlation search serves psi + pi from psi's forward transforms
-  // (CorrelationTranslation::FindWithHalfTurn).
-  for (std::size_t k = 0; k + 1 < yaws.size(); k += 2) {
+  // Each rotation pair (psi, psi + pi) is searched on its own, in parallel; its candidates are
+  // then gathered in rotation order, so the result does not depend on the thread count.
+  std::vector<std::vector<CellHypothesis>> found_per_pair(rotation_pairs);
+  ParallelFor(rotation_pairs, threads, [&](std::size_t pair_index) {
+    std::vector<CellHypothesis>& found = found_per_pair[pair_index];
+    const auto add_candidates = [&](const std::vector<TranslationCandidate>& translations,
+                                    double yaw) {
+      for (const auto& t : translations) {
+        const Pose2 T_ga_gb(t.t_cells, yaw);
+        // Ranking pass on every other row and column: 4x cheaper, same order in practice (the
+        // overlap estimate scales by the 4 cells each visited one stands for).
+        const Agreement agreement = CountAgreement(a, b, T_ga_gb, 2, &b_spans);
+        found.push_back({T_ga_gb, agreement.omega(), 4 * (agreement.agree + agreement.disagree)});
+      }
+    };
+    const std::size_t k = 2 * pair_index;
     const double yaw = yaws[k], yaw_half_turn = yaws[k + 1];
     if (correlation) {
-      const RotatedB& r = rotated[k / 2];
-      const auto found =
-          correlation->FindWithHalfTurn(r.scored_walls, sampled ? r.walls : r.scored_walls, r.free);
-      add_candidates(found[0], yaw);
-      add_candidates(found[1], yaw_half_turn);
+      // The correlation search serves psi + pi from psi's forward transforms
+      // (CorrelationTranslation::FindWithHalfTurn). Its work buffers are per thread.
+      std::optional<CorrelationTranslation> own;
+      if (threads != 1) own.emplace(correlation->WithOwnBuffers());
+      CorrelationTranslation& search = own ? *own : *correlation;
+      const RotatedB& r = rotated[pair_index];
+      const auto translations =
+          search.FindWithHalfTurn(r.scored_walls, sampled ? r.walls : r.scored_walls, r.free);
+      add_candidates(translations[0], yaw);
+      add_candidates(translations[1], yaw_half_turn);
     } else {
       add_candidates(spectra->Find(RotatePoints(b_spectra_points, yaw)), yaw);
       add_candidates(spectra->Find(RotatePoints(b_spectra_points, yaw_half_turn)), yaw_half_turn);
     }
+  });
+  std::vector<CellHypothesis> candidates;
+  for (const auto& found : found_per_pair) {
+    candidates.insert(candidates.end(), found.begin(), found.end());
   }
   SortHypotheses(candidates, options.min_overlap_cells);
   candidates = RemoveDuplicates(std::move(candidates), options);
   if (static_cast<int>(candidates.size()) > options.max_hypotheses) {
     candidates.resize(std::max(options.max_hypotheses, 0));
   }
-  for (auto& c : candidates) {
-    const Agreement agreement = CountAgreement(a, b, c.T_ga_gb, 1, &b_spans);
-    c.omega = agreement.omega();  // Eq. (1)
-    c.overlap_cells = agreement.agree + agreement.disagree;
-  }
+  ParallelFor(candidates.size(), threads, [&](std::size_t k) {
+    const Agreement agreement = CountAgreement(a, b, candidates[k].T_ga_gb, 1, &b_spans);
+    candidates[k].omega = agreement.omega();  // Eq. (1)
+    candidates[k].overlap_cells = agreement.agree + agreement.disagree;
+  });
   SortHypotheses(candidates, options.min_overlap_cells);
   return candidates;
 }

@@ -30,9 +30,11 @@ struct MapFeatures {
 };
 
 // GenerateHypotheses (core/hypothesis_generator.hpp) on precomputed features: the same result.
-// Both feature sets must have been made with the same `options`.
+// Both feature sets must have been made with the same `options`. The rotation candidates are
+// searched on `threads` threads (<= 0: all cores; one pair alone, as `fleetmerge pair` runs;
+// a fleet runs its pairs in parallel instead): the same hypotheses for any count.
 std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& a, const MapFeatures& b,
-                                               const HypothesisOptions& options);
+                                               const HypothesisOptions& options, int threads = 1);
 
 // SymmetricWallAgreement (core/wall_agreement.hpp) with the maps' near-wall masks.
 double SymmetricWallAgreement(const MapFeatures& a, const MapFeatures& b, const Pose2& T_ga_gb);

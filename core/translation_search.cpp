@@ -165,6 +165,12 @@ CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, int pooli
       max_b_size_(max_b_pixels),
       correlator_(FixedLayers(a, pooling_, options.free_penalty, &a_offset_px_), max_b_size_) {}
 
+CorrelationTranslation CorrelationTranslation::WithOwnBuffers() const {
+  CorrelationTranslation copy(*this);
+  copy.correlator_ = correlator_.WithOwnBuffers();
+  return copy;
+}
+
 CorrelationTranslation::BLayers CorrelationTranslation::RasterizeB(
     const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
     const std::vector<Eigen::Vector2f>& free) const {

@@ -75,6 +75,10 @@ class CorrelationTranslation {
       const std::vector<Eigen::Vector2f>& free);
   int pooling() const { return pooling_; }
 
+  // A search for another thread (Find changes the correlator's work buffers): the same fixed
+  // layers and transforms, shared; buffers of its own.
+  CorrelationTranslation WithOwnBuffers() const;
+
  private:
   TranslationOptions options_;
   int pooling_ = 1;  // cells per coarse pixel

@@ -1,8 +1,10 @@
 #include "pipeline/pair_merge.hpp"
 
 #include <algorithm>
+#include <memory>
 
 #include "core/acceptance_index.hpp"
+#include "core/parallel.hpp"
 #include "core/resample.hpp"
 
 namespace fleetmerge {
@@ -33,18 +35,20 @@ struct PairContext {
 
 // Refines each hypothesis and keeps the refined pose unless omega (at full resolution) says it
 // got worse: the alignment cost and omega can disagree when the maps barely overlap.
+// Each hypothesis on its own (in parallel on `threads`), so the result does not depend on them.
 void RefineAll(const PairContext& pair, std::vector<CellHypothesis>& hypotheses,
-               const LocalAlignmentOptions& options, std::int64_t min_overlap_cells) {
-  for (auto& h : hypotheses) {
+               const LocalAlignmentOptions& options, std::int64_t min_overlap_cells, int threads) {
+  ParallelFor(hypotheses.size(), threads, [&](std::size_t k) {
+    CellHypothesis& h = hypotheses[k];
     const LocalAlignmentResult r = RefineAlignment(
         pair.target_a, pair.target_b, ScaleTranslation(h.T_ga_gb, 1.0 / pair.scale), options);
-    if (!r.converged) continue;
+    if (!r.converged) return;
     const Pose2 T_ga_gb = ScaleTranslation(r.T_ga_gb, pair.scale);
     const Agreement agreement = CountAgreement(pair.a, pair.b, T_ga_gb, 1, &pair.b_spans);
     if (agreement.omega() >= h.omega - 0.01) {  // Eq. (1)
       h = {T_ga_gb, agreement.omega(), agreement.agree + agreement.disagree};
     }
-  }
+  });
   SortHypotheses(hypotheses, min_overlap_cells);
 }
 
@@ -60,30 +64,39 @@ int CoarseScale(const OccupancyGrid& a, const OccupancyGrid& b, const PairOption
 }  // namespace
 
 std::vector<CellHypothesis> RankedCellHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
-                                                 const PairOptions& options) {
-  return RankedCellHypotheses(PreparedMap(a, options), PreparedMap(b, options), options);
+                                                 const PairOptions& options, int threads) {
+  std::unique_ptr<PreparedMap> prepared[2];
+  const OccupancyGrid* grids[2] = {&a, &b};
+  ParallelFor(2, threads, [&](std::size_t k) {
+    prepared[k] = std::make_unique<PreparedMap>(*grids[k], options);
+    // The final refinement's target, made here in parallel (a map without walls has none).
+    if (options.refine && !prepared[k]->features().occupied.empty()) prepared[k]->Target(1);
+  });
+  return RankedCellHypotheses(*prepared[0], *prepared[1], options, threads);
 }
 
 std::vector<CellHypothesis> RankedCellHypotheses(const PreparedMap& prepared_a,
                                                  const PreparedMap& prepared_b,
-                                                 const PairOptions& options) {
+                                                 const PairOptions& options, int threads) {
   const OccupancyGrid& a = prepared_a.grid();
   const OccupancyGrid& b = prepared_b.grid();
   const int wanted = options.hypotheses.max_hypotheses;
   HypothesisOptions generation = options.hypotheses;
   if (options.refine) generation.max_hypotheses *= std::max(options.candidates_per_hypothesis, 1);
   std::vector<CellHypothesis> hypotheses =
-      GenerateHypotheses(prepared_a.features(), prepared_b.features(), generation);
+      GenerateHypotheses(prepared_a.features(), prepared_b.features(), generation, threads);
   if (options.refine && !hypotheses.empty()) {
     // Coarse-to-fine: every candidate on coarse grids with a wide basin, then the best at full
     // resolution.
     const int scale = CoarseScale(a, b, options);
+    const PreparedMap* both[2] = {&prepared_a, &prepared_b};
+    ParallelFor(2, threads, [&](std::size_t k) { both[k]->Target(scale); });
     RefineAll(PairContext(prepared_a, prepared_b, scale), hypotheses, options.quick_refine,
-              options.hypotheses.min_overlap_cells);
+              options.hypotheses.min_overlap_cells, threads);
     const std::size_t best = std::min<std::size_t>(options.final_refine_count, hypotheses.size());
     std::vector<CellHypothesis> head(hypotheses.begin(), hypotheses.begin() + best);
     RefineAll(PairContext(prepared_a, prepared_b, 1), head, options.final_refine,
-              options.hypotheses.min_overlap_cells);
+              options.hypotheses.min_overlap_cells, threads);
     std::copy(head.begin(), head.end(), hypotheses.begin());
     SortHypotheses(hypotheses, options.hypotheses.min_overlap_cells);
     // Several candidates may have converged onto one pose.
@@ -93,15 +106,21 @@ std::vector<CellHypothesis> RankedCellHypotheses(const PreparedMap& prepared_a,
   return hypotheses;
 }
 
-PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairOptions& options) {
+PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairOptions& options,
+                     int threads) {
   PairResult result;
   const double ra = a.geometry().resolution_m(), rb = b.geometry().resolution_m();
   result.resolution_m = std::min(ra, rb);
   result.resampled = std::abs(ra - rb) > 1e-9 * result.resolution_m;
   // A copy for the map already at the finer resolution (ResampleToResolution's contract).
-  const OccupancyGrid a_same = ResampleToResolution(a, result.resolution_m);
-  const OccupancyGrid b_same = ResampleToResolution(b, result.resolution_m);
-  for (const auto& h : RankedCellHypotheses(a_same, b_same, options)) {
+  OccupancyGrid same[2];
+  const OccupancyGrid* grids[2] = {&a, &b};
+  ParallelFor(2, threads, [&](std::size_t k) {
+    same[k] = ResampleToResolution(*grids[k], result.resolution_m);
+  });
+  const OccupancyGrid& a_same = same[0];
+  const OccupancyGrid& b_same = same[1];
+  for (const auto& h : RankedCellHypotheses(a_same, b_same, options, threads)) {
     result.hypotheses.push_back(
         {MapPoseFromCellPose(a_same.geometry(), b_same.geometry(), h.T_ga_gb), h.omega});
   }

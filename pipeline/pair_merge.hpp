@@ -26,14 +26,18 @@ struct PairResult {
 
 // Maps of different resolutions are compared at the finer one (the coarser map is resampled;
 // its map frame is unchanged, so the poses stay valid for the original files).
-PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairOptions& options);
+// `threads` (<= 0: all cores) share the work of this one pair: the two maps' preparation, the
+// rotation candidates' searches and the candidates' refinements. The hypotheses are the same
+// for any count. A fleet runs its pairs in parallel instead (pipeline/all_pairs.hpp).
+PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairOptions& options,
+                     int threads = 1);
 
 // The hypotheses of two maps that already share a resolution, best first, in cell units.
 std::vector<CellHypothesis> RankedCellHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
-                                                 const PairOptions& options);
+                                                 const PairOptions& options, int threads = 1);
 // The same on maps prepared once (pipeline/prepared_map.hpp) with the same options: what a fleet
 // uses, so that each map's own work is shared by all its pairs.
 std::vector<CellHypothesis> RankedCellHypotheses(const PreparedMap& a, const PreparedMap& b,
-                                                 const PairOptions& options);
+                                                 const PairOptions& options, int threads = 1);
 
 }  // namespace fleetmerge

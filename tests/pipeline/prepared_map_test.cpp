@@ -49,6 +49,38 @@ TEST(PreparedMapTest, SharedWorkGivesEveryPairItsOwnAnswer) {
   }
 }
 
+// One pair's work shared by threads (the rotation searches, the refinements, the two maps'
+// preparation) gives exactly the one-thread hypotheses, with refinement and without, and on the
+// paper's X/Y spectra.
+TEST(PreparedMapTest, OnePairOnSeveralThreadsGivesTheOneThreadHypotheses) {
+  std::mt19937 rng(43);
+  const GroundTruthFleet fleet = CutFleet(Building(), 3, rng);
+  PairOptions plain;
+  plain.refine = false;
+  PairOptions spectra;
+  spectra.hypotheses.translation.method = TranslationMethod::kXySpectra;
+  int compared = 0;
+  for (const PairOptions& options : {PairOptions{}, plain, spectra}) {
+    for (const auto& [a, b] : {std::pair{0, 1}, std::pair{1, 2}}) {
+      const PairResult one = MergePair(fleet.maps[a], fleet.maps[b], options, 1);
+      ASSERT_FALSE(one.hypotheses.empty());
+      for (const int threads : {2, 3, 0}) {
+        const PairResult many = MergePair(fleet.maps[a], fleet.maps[b], options, threads);
+        ASSERT_EQ(many.hypotheses.size(), one.hypotheses.size()) << threads;
+        for (std::size_t k = 0; k < one.hypotheses.size(); ++k) {
+          const PairHypothesis &h = many.hypotheses[k], &want = one.hypotheses[k];
+          EXPECT_EQ(h.omega, want.omega) << threads << " threads, hypothesis " << k;
+          EXPECT_EQ(h.T_a_b.x_m(), want.T_a_b.x_m()) << threads << " threads, hypothesis " << k;
+          EXPECT_EQ(h.T_a_b.y_m(), want.T_a_b.y_m()) << threads << " threads, hypothesis " << k;
+          EXPECT_EQ(h.T_a_b.yaw_rad(), want.T_a_b.yaw_rad()) << threads << " threads, " << k;
+          ++compared;
+        }
+      }
+    }
+  }
+  EXPECT_GT(compared, 30);
+}
+
 TEST(PreparedMapTest, TargetsAreBuiltOncePerScaleAndShared) {
   std::mt19937 rng(42);
   const GroundTruthFleet fleet = CutFleet(Building(), 2, rng);

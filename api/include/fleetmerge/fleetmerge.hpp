@@ -94,7 +94,7 @@ struct Options {
   double min_bridge_wall_agreement = 0.89;
   std::string fusion = "log-odds";  // Merge: log-odds | max | vote
   std::string reference;            // Merge: the reference map's name (empty: the first map)
-  int threads = 0;                  // 0: all cores
+  int threads = 0;                  // Pair and Merge: threads (0: all cores); same results
   bool refine = true;               // false: Carpin's hypotheses without the local refinement
   std::string translation = "correlation";   // correlation (2-D FFT) | spectra (paper's X/Y)
   std::int64_t max_map_cells = 100'000'000;  // Merge of files: larger images are refused
