@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <opencv2/imgproc.hpp>
@@ -32,11 +33,21 @@ CoarseLayers OpenSpaceAround(cv::Mat1f walls, cv::Mat1f free) {
 CoarseLayers CoarseGridLayers(const OccupancyGrid& a, int pooling) {
   const int w = (a.width() + pooling - 1) / pooling, h = (a.height() + pooling - 1) / pooling;
   cv::Mat1f walls = cv::Mat1f::zeros(h, w), free = cv::Mat1f::zeros(h, w);
+  // Pixel by pixel (a block of `pooling` cells of a row at a time), not cell by cell with two
+  // divisions each.
   for (int j = 0; j < a.height(); ++j) {
     const std::uint8_t* row = a.cells().ptr<std::uint8_t>(j);
-    for (int i = 0; i < a.width(); ++i) {
-      if (row[i] == std::uint8_t(CellState::kOccupied)) walls(j / pooling, i / pooling) = 1.f;
-      if (row[i] == std::uint8_t(CellState::kFree)) free(j / pooling, i / pooling) = 1.f;
+    float* walls_row = walls.ptr<float>(j / pooling);
+    float* free_row = free.ptr<float>(j / pooling);
+    for (int u = 0; u < w; ++u) {
+      const int end = std::min(a.width(), (u + 1) * pooling);
+      bool wall = false, open = false;
+      for (int i = u * pooling; i < end; ++i) {
+        wall |= row[i] == std::uint8_t(CellState::kOccupied);
+        open |= row[i] == std::uint8_t(CellState::kFree);
+      }
+      if (wall) walls_row[u] = 1.f;
+      if (open) free_row[u] = 1.f;
     }
   }
   return OpenSpaceAround(walls, free);
@@ -80,12 +91,30 @@ struct PointBox {
 PointBox BoundingBox(const std::vector<Eigen::Vector2f>& scored_walls,
                      const std::vector<Eigen::Vector2f>& walls,
                      const std::vector<Eigen::Vector2f>& free) {
-  PointBox box{walls.front(), walls.front()};
+  // Four independent running boxes, merged at the end: one would make every point wait for
+  // the previous point's min and max (the same box: min and max do not depend on the order).
+  constexpr std::size_t kLanes = 4;
+  std::array<PointBox, kLanes> lanes;
+  lanes.fill(PointBox{walls.front(), walls.front()});
   for (const auto* points : {&scored_walls, &walls, &free}) {
-    for (const auto& q : *points) {
-      box.min = box.min.cwiseMin(q);
-      box.max = box.max.cwiseMax(q);
+    const Eigen::Vector2f* q = points->data();
+    const std::size_t n = points->size();
+    std::size_t k = 0;
+    for (; k + kLanes <= n; k += kLanes) {
+      for (std::size_t lane = 0; lane < kLanes; ++lane) {
+        lanes[lane].min = lanes[lane].min.cwiseMin(q[k + lane]);
+        lanes[lane].max = lanes[lane].max.cwiseMax(q[k + lane]);
+      }
     }
+    for (; k < n; ++k) {
+      lanes[0].min = lanes[0].min.cwiseMin(q[k]);
+      lanes[0].max = lanes[0].max.cwiseMax(q[k]);
+    }
+  }
+  PointBox box = lanes[0];
+  for (std::size_t lane = 1; lane < kLanes; ++lane) {
+    box.min = box.min.cwiseMin(lanes[lane].min);
+    box.max = box.max.cwiseMax(lanes[lane].max);
   }
   return box;
 }
