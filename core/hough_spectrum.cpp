@@ -1,6 +1,7 @@
 #include "core/hough_spectrum.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -41,28 +42,38 @@ HoughTransform ComputeHoughTransform(const std::vector<Eigen::Vector2f>& points,
   }
   const float inv_step = static_cast<float>(1.0 / h.rho_step);
   const float offset = static_cast<float>(-h.rho_min / h.rho_step);
-  std::vector<int> bins(m);
-  // Votes go to kCopies interleaved partial columns, summed after: successive points of a wall
-  // vote for the same rho bin, and one counter would make each increment wait for the last.
+  // Bins are computed for a chunk of points at a time (kept in L1 between the vectorised
+  // computation and the votes), and the votes go to kCopies interleaved partial columns, summed
+  // after: successive points of a wall vote for the same rho bin, and one counter would make
+  // each increment wait for the last.
+  constexpr std::size_t kChunk = 1024;
   constexpr std::size_t kCopies = 4;
+  std::array<int, kChunk> bins;
   std::vector<int> partial(kCopies * static_cast<std::size_t>(h.n_rho));
   for (int k = 0; k < h.n_theta; ++k) {
     const float c = static_cast<float>(std::cos(h.theta_rad(k))) * inv_step;
     const float s = static_cast<float>(std::sin(h.theta_rad(k))) * inv_step;
-    for (std::size_t n = 0; n < m; ++n) bins[n] = static_cast<int>(xs[n] * c + ys[n] * s + offset);
     std::fill(partial.begin(), partial.end(), 0);
     int* p0 = partial.data();
     int* p1 = p0 + h.n_rho;
     int* p2 = p1 + h.n_rho;
     int* p3 = p2 + h.n_rho;
-    std::size_t n = 0;
-    for (; n + kCopies <= m; n += kCopies) {  // Eq. (2): one vote per column
-      ++p0[bins[n]];
-      ++p1[bins[n + 1]];
-      ++p2[bins[n + 2]];
-      ++p3[bins[n + 3]];
+    for (std::size_t start = 0; start < m; start += kChunk) {
+      const std::size_t count = std::min(kChunk, m - start);
+      const float* x = xs.data() + start;
+      const float* y = ys.data() + start;
+      for (std::size_t n = 0; n < count; ++n) {
+        bins[n] = static_cast<int>(x[n] * c + y[n] * s + offset);
+      }
+      std::size_t n = 0;
+      for (; n + kCopies <= count; n += kCopies) {  // Eq. (2): one vote per column
+        ++p0[bins[n]];
+        ++p1[bins[n + 1]];
+        ++p2[bins[n + 2]];
+        ++p3[bins[n + 3]];
+      }
+      for (; n < count; ++n) ++p0[bins[n]];
     }
-    for (; n < m; ++n) ++p0[bins[n]];
     int* column = h.votes.data() + static_cast<std::size_t>(k) * h.n_rho;
     for (int i = 0; i < h.n_rho; ++i) column[i] = p0[i] + p1[i] + p2[i] + p3[i];
   }

@@ -83,6 +83,7 @@ std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapF
   // largest of these images rather than for b's diagonal.
   struct RotatedB {
     std::vector<Eigen::Vector2f> scored_walls, walls, free;
+    CorrelationTranslation::PointBox box;  // of all three
   };
   const std::size_t rotation_pairs = yaws.size() / 2;
   std::vector<RotatedB> rotated;
@@ -98,8 +99,9 @@ std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapF
       r.scored_walls = RotatePoints(b_spectra_points, yaw);
       if (sampled) r.walls = RotatePoints(b_points, yaw);
       r.free = RotatePoints(b_free_points, yaw);
-      sizes[pair_index] = CorrelationTranslation::RasterSize(
-          r.scored_walls, sampled ? r.walls : r.scored_walls, r.free, pooling);
+      r.box = CorrelationTranslation::Bounds(r.scored_walls, sampled ? r.walls : r.scored_walls,
+                                             r.free);
+      sizes[pair_index] = CorrelationTranslation::RasterSize(r.box, pooling);
     });
     cv::Size max_b_pixels(1, 1);
     for (const cv::Size& size : sizes) {
@@ -137,8 +139,8 @@ std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapF
       if (threads != 1) own.emplace(correlation->WithOwnBuffers());
       CorrelationTranslation& search = own ? *own : *correlation;
       const RotatedB& r = rotated[pair_index];
-      const auto translations =
-          search.FindWithHalfTurn(r.scored_walls, sampled ? r.walls : r.scored_walls, r.free);
+      const auto translations = search.FindWithHalfTurn(
+          r.scored_walls, sampled ? r.walls : r.scored_walls, r.free, &r.box);
       add_candidates(translations[0], yaw);
       add_candidates(translations[1], yaw_half_turn);
     } else {

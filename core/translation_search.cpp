@@ -7,6 +7,8 @@
 #include <functional>
 #include <opencv2/imgproc.hpp>
 
+#include "core/error.hpp"
+
 namespace fleetmerge {
 namespace {
 
@@ -84,10 +86,9 @@ cv::Size ImageBound(double b_extent_cells, int pooling) {
   return cv::Size(side, side);
 }
 
+using PointBox = CorrelationTranslation::PointBox;
+
 // The rotated b points' bounding box, over every point the search rasterizes.
-struct PointBox {
-  Eigen::Vector2f min, max;
-};
 PointBox BoundingBox(const std::vector<Eigen::Vector2f>& scored_walls,
                      const std::vector<Eigen::Vector2f>& walls,
                      const std::vector<Eigen::Vector2f>& free) {
@@ -172,11 +173,15 @@ int CorrelationPooling(const OccupancyGrid& a, const OccupancyGrid& b,
   return PoolingFor(a, std::hypot(double(b.width()), double(b.height())), options.coarse_max_side);
 }
 
-cv::Size CorrelationTranslation::RasterSize(const std::vector<Eigen::Vector2f>& scored_walls,
-                                            const std::vector<Eigen::Vector2f>& walls,
-                                            const std::vector<Eigen::Vector2f>& free, int pooling) {
-  if (walls.empty()) return cv::Size(1, 1);
-  return RasterSizeOf(BoundingBox(scored_walls, walls, free), pooling);
+CorrelationTranslation::PointBox CorrelationTranslation::Bounds(
+    const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
+    const std::vector<Eigen::Vector2f>& free) {
+  if (walls.empty()) throw Error("CorrelationTranslation::Bounds: no walls");
+  return BoundingBox(scored_walls, walls, free);
+}
+
+cv::Size CorrelationTranslation::RasterSize(const PointBox& box, int pooling) {
+  return RasterSizeOf(box, pooling);
 }
 
 CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, double b_extent_cells,
@@ -202,8 +207,7 @@ CorrelationTranslation CorrelationTranslation::WithOwnBuffers() const {
 
 CorrelationTranslation::BLayers CorrelationTranslation::RasterizeB(
     const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
-    const std::vector<Eigen::Vector2f>& free) const {
-  const PointBox box = BoundingBox(scored_walls, walls, free);
+    const std::vector<Eigen::Vector2f>& free, const PointBox& box) const {
   const Eigen::Vector2f q_min = box.min;
   const cv::Size size = RasterSizeOf(box, pooling_);
   const int w = std::min(max_b_size_.width, size.width);
@@ -228,7 +232,7 @@ std::vector<TranslationCandidate> CorrelationTranslation::Find(
     const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
     const std::vector<Eigen::Vector2f>& free) {
   if (scored_walls.empty() || walls.empty()) return {};
-  const BLayers b = RasterizeB(scored_walls, walls, free);
+  const BLayers b = RasterizeB(scored_walls, walls, free, BoundingBox(scored_walls, walls, free));
   const cv::Mat1f surface = correlator_.CorrelateSum(b.layers);
   const int w = b.layers.front().cols, h = b.layers.front().rows;
   // b pixel u covers q - q_min in [p u, p u + p); shifted by d it meets a pixel u + d, which
@@ -244,9 +248,10 @@ std::vector<TranslationCandidate> CorrelationTranslation::Find(
 
 std::array<std::vector<TranslationCandidate>, 2> CorrelationTranslation::FindWithHalfTurn(
     const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
-    const std::vector<Eigen::Vector2f>& free) {
+    const std::vector<Eigen::Vector2f>& free, const PointBox* box) {
   if (scored_walls.empty() || walls.empty()) return {};
-  const BLayers b = RasterizeB(scored_walls, walls, free);
+  const BLayers b =
+      RasterizeB(scored_walls, walls, free, box ? *box : BoundingBox(scored_walls, walls, free));
   cv::Mat1f surface, surface_half_turn;
   correlator_.CorrelateSumAndHalfTurn(b.layers, &surface, &surface_half_turn);
   const int w = b.layers.front().cols, h = b.layers.front().rows;

@@ -53,10 +53,17 @@ class CorrelationTranslation {
   // not as b's diagonal, and the results are the same.
   CorrelationTranslation(const OccupancyGrid& a, int pooling, cv::Size max_b_pixels,
                          const TranslationOptions& options);
-  // The size of the b image that Find rasterizes from these points at this pooling.
-  static cv::Size RasterSize(const std::vector<Eigen::Vector2f>& scored_walls,
-                             const std::vector<Eigen::Vector2f>& walls,
-                             const std::vector<Eigen::Vector2f>& free, int pooling);
+  // The bounding box of every point Find rasterizes (b's rotated points; `walls` must not be
+  // empty), and the size of the b image it makes from them at this pooling. A caller that
+  // sizes the search first passes the box on to FindWithHalfTurn instead of a second pass over
+  // 10^5 free points.
+  struct PointBox {
+    Eigen::Vector2f min, max;
+  };
+  static PointBox Bounds(const std::vector<Eigen::Vector2f>& scored_walls,
+                         const std::vector<Eigen::Vector2f>& walls,
+                         const std::vector<Eigen::Vector2f>& free);
+  static cv::Size RasterSize(const PointBox& box, int pooling);
   // Centres of b's cells, rotated by the hypothesis: scored_walls, the occupied cells that vote
   // (sampled, Section III-D); walls, every occupied cell, and free, every free cell, which say
   // where b is open. Open space must come from all walls: a wall left out of a sample would
@@ -70,9 +77,10 @@ class CorrelationTranslation {
   // searched, and the half-turned images are the given ones flipped, which the correlator
   // serves from the same forward transforms. Pass one vector as scored_walls and walls when
   // every wall is scored.
+  // `box`: Bounds of these points when the caller has it (nullptr: computed here).
   std::array<std::vector<TranslationCandidate>, 2> FindWithHalfTurn(
       const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
-      const std::vector<Eigen::Vector2f>& free);
+      const std::vector<Eigen::Vector2f>& free, const PointBox* box = nullptr);
   int pooling() const { return pooling_; }
 
   // A search for another thread (Find changes the correlator's work buffers): the same fixed
@@ -95,7 +103,7 @@ class CorrelationTranslation {
   };
   BLayers RasterizeB(const std::vector<Eigen::Vector2f>& scored_walls,
                      const std::vector<Eigen::Vector2f>& walls,
-                     const std::vector<Eigen::Vector2f>& free) const;
+                     const std::vector<Eigen::Vector2f>& free, const PointBox& box) const;
 };
 
 class XySpectraTranslation {
