@@ -212,12 +212,22 @@ CorrelationTranslation::BLayers CorrelationTranslation::RasterizeB(
   const cv::Size size = RasterSizeOf(box, pooling_);
   const int w = std::min(max_b_size_.width, size.width);
   const int h = std::min(max_b_size_.height, size.height);
+  const float pooling = static_cast<float>(pooling_);
   const auto rasterize = [&](const std::vector<Eigen::Vector2f>& points) {
     cv::Mat1f image = cv::Mat1f::zeros(h, w);
-    for (const auto& q : points) {
-      const int u = std::min(w - 1, int((q.x() - q_min.x()) / pooling_));
-      const int v = std::min(h - 1, int((q.y() - q_min.y()) / pooling_));
-      image(v, u) = 1.f;
+    float* pixels = image.ptr<float>(0);  // zeros() is continuous
+    // Pixel indices for a chunk of points (a loop the compiler vectorises), then the stores.
+    constexpr std::size_t kChunk = 1024;
+    std::array<int, kChunk> index;
+    for (std::size_t start = 0; start < points.size(); start += kChunk) {
+      const std::size_t count = std::min(kChunk, points.size() - start);
+      const Eigen::Vector2f* q = points.data() + start;
+      for (std::size_t n = 0; n < count; ++n) {
+        const int u = std::min(w - 1, static_cast<int>((q[n].x() - q_min.x()) / pooling));
+        const int v = std::min(h - 1, static_cast<int>((q[n].y() - q_min.y()) / pooling));
+        index[n] = v * w + u;
+      }
+      for (std::size_t n = 0; n < count; ++n) pixels[index[n]] = 1.f;
     }
     return image;
   };
