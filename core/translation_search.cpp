@@ -80,12 +80,6 @@ std::vector<cv::Mat1f> FixedLayers(const OccupancyGrid& a, int pooling, double f
   return {score(known).clone(), layers.walls(known).clone()};
 }
 
-// A b image of any rotation of points within b_extent_cells of each other fits this.
-cv::Size ImageBound(double b_extent_cells, int pooling) {
-  const int side = static_cast<int>(std::ceil(b_extent_cells / pooling)) + 2;
-  return cv::Size(side, side);
-}
-
 using PointBox = CorrelationTranslation::PointBox;
 
 // The rotated b points' bounding box, over every point the search rasterizes.
@@ -118,11 +112,6 @@ PointBox BoundingBox(const std::vector<Eigen::Vector2f>& scored_walls,
     box.max = box.max.cwiseMax(lanes[lane].max);
   }
   return box;
-}
-
-cv::Size RasterSizeOf(const PointBox& box, int pooling) {
-  return cv::Size(int((box.max.x() - box.min.x()) / pooling) + 1,
-                  int((box.max.y() - box.min.y()) / pooling) + 1);
 }
 
 // Local maxima of a 2-D surface (5x5 neighbourhood, border rows and columns excluded), largest
@@ -181,15 +170,9 @@ CorrelationTranslation::PointBox CorrelationTranslation::Bounds(
 }
 
 cv::Size CorrelationTranslation::RasterSize(const PointBox& box, int pooling) {
-  return RasterSizeOf(box, pooling);
+  return cv::Size(int((box.max.x() - box.min.x()) / pooling) + 1,
+                  int((box.max.y() - box.min.y()) / pooling) + 1);
 }
-
-CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, double b_extent_cells,
-                                               const TranslationOptions& options)
-    : CorrelationTranslation(
-          a, PoolingFor(a, b_extent_cells, options.coarse_max_side),
-          ImageBound(b_extent_cells, PoolingFor(a, b_extent_cells, options.coarse_max_side)),
-          options) {}
 
 CorrelationTranslation::CorrelationTranslation(const OccupancyGrid& a, int pooling,
                                                cv::Size max_b_pixels,
@@ -209,7 +192,7 @@ CorrelationTranslation::BLayers CorrelationTranslation::RasterizeB(
     const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
     const std::vector<Eigen::Vector2f>& free, const PointBox& box) const {
   const Eigen::Vector2f q_min = box.min;
-  const cv::Size size = RasterSizeOf(box, pooling_);
+  const cv::Size size = RasterSize(box, pooling_);
   const int w = std::min(max_b_size_.width, size.width);
   const int h = std::min(max_b_size_.height, size.height);
   const float pooling = static_cast<float>(pooling_);
@@ -238,22 +221,16 @@ CorrelationTranslation::BLayers CorrelationTranslation::RasterizeB(
           q_min};
 }
 
-std::vector<TranslationCandidate> CorrelationTranslation::Find(
-    const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
-    const std::vector<Eigen::Vector2f>& free) {
-  if (scored_walls.empty() || walls.empty()) return {};
-  const BLayers b = RasterizeB(scored_walls, walls, free, BoundingBox(scored_walls, walls, free));
-  const cv::Mat1f surface = correlator_.CorrelateSum(b.layers);
-  const int w = b.layers.front().cols, h = b.layers.front().rows;
-  // b pixel u covers q - q_min in [p u, p u + p); shifted by d it meets a pixel u + d, which
-  // covers a cells [p (u + d), ...): so q + t lies in a with t = p d - q_min.
-  std::vector<TranslationCandidate> out = SurfacePeaks(surface, options_.candidates);
-  for (auto& c : out) {
-    const Eigen::Vector2d d(c.t_cells.x() - (w - 1) + a_offset_px_.x,
-                            c.t_cells.y() - (h - 1) + a_offset_px_.y);
-    c.t_cells = pooling_ * d - b.q_min.cast<double>();
+void CorrelationTranslation::ToTranslations(cv::Size b_pixels, const Eigen::Vector2d& anchor,
+                                            std::vector<TranslationCandidate>& peaks) const {
+  // b pixel u covers q - anchor in [p u, p u + p); shifted by d it meets a pixel u + d, which
+  // covers a cells [p (u + d), ...): so q + t lies in a with t = p d - anchor. The surface's
+  // element (row, col) is the shift (col - (w - 1), row - (h - 1)) from a's crop.
+  for (auto& c : peaks) {
+    const Eigen::Vector2d d(c.t_cells.x() - (b_pixels.width - 1) + a_offset_px_.x,
+                            c.t_cells.y() - (b_pixels.height - 1) + a_offset_px_.y);
+    c.t_cells = pooling_ * d - anchor;
   }
-  return out;
 }
 
 std::array<std::vector<TranslationCandidate>, 2> CorrelationTranslation::FindWithHalfTurn(
@@ -268,20 +245,11 @@ std::array<std::vector<TranslationCandidate>, 2> CorrelationTranslation::FindWit
   std::array<std::vector<TranslationCandidate>, 2> out = {
       SurfacePeaks(surface, options_.candidates),
       SurfacePeaks(surface_half_turn, options_.candidates)};
-  for (auto& c : out[0]) {  // as in Find
-    const Eigen::Vector2d d(c.t_cells.x() - (w - 1) + a_offset_px_.x,
-                            c.t_cells.y() - (h - 1) + a_offset_px_.y);
-    c.t_cells = pooling_ * d - b.q_min.cast<double>();
-  }
+  ToTranslations(cv::Size(w, h), b.q_min.cast<double>(), out[0]);
   // The flipped image's pixel u' = w - 1 - u holds the turned points -q with q in b's pixel u:
-  // -q lies in (A + p u', A + p u' + p] with A = -q_min - p (w, h), the flipped image's anchor,
-  // so t = p d - A as above.
+  // -q lies in (A + p u', A + p u' + p] with A = -q_min - p (w, h), the flipped image's anchor.
   const Eigen::Vector2d anchor = -b.q_min.cast<double>() - pooling_ * Eigen::Vector2d(w, h);
-  for (auto& c : out[1]) {
-    const Eigen::Vector2d d(c.t_cells.x() - (w - 1) + a_offset_px_.x,
-                            c.t_cells.y() - (h - 1) + a_offset_px_.y);
-    c.t_cells = pooling_ * d - anchor;
-  }
+  ToTranslations(cv::Size(w, h), anchor, out[1]);
   return out;
 }
 

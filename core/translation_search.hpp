@@ -45,15 +45,12 @@ int CorrelationPooling(const OccupancyGrid& a, const OccupancyGrid& b,
 
 class CorrelationTranslation {
  public:
-  // b_extent_cells bounds the side of rotated b's bounding box (b's diagonal).
-  CorrelationTranslation(const OccupancyGrid& a, double b_extent_cells,
-                         const TranslationOptions& options);
   // With the pooling (CorrelationPooling) and the largest b image (RasterSize of every rotation
-  // that will be searched) known: the transforms are then only as large as those images need,
-  // not as b's diagonal, and the results are the same.
+  // that will be searched): the transforms are only as large as those images need, not as b's
+  // diagonal.
   CorrelationTranslation(const OccupancyGrid& a, int pooling, cv::Size max_b_pixels,
                          const TranslationOptions& options);
-  // The bounding box of every point Find rasterizes (b's rotated points; `walls` must not be
+  // The bounding box of every point the search rasterizes (b's rotated points; `walls` must not be
   // empty), and the size of the b image it makes from them at this pooling. A caller that
   // sizes the search first passes the box on to FindWithHalfTurn instead of a second pass over
   // 10^5 free points.
@@ -64,26 +61,23 @@ class CorrelationTranslation {
                          const std::vector<Eigen::Vector2f>& walls,
                          const std::vector<Eigen::Vector2f>& free);
   static cv::Size RasterSize(const PointBox& box, int pooling);
-  // Centres of b's cells, rotated by the hypothesis: scored_walls, the occupied cells that vote
-  // (sampled, Section III-D); walls, every occupied cell, and free, every free cell, which say
-  // where b is open. Open space must come from all walls: a wall left out of a sample would
-  // turn its pixel open and penalise a's wall there (every k-th point of a row-major list drops
-  // whole walls for k >= 6, and the true pose was then found in 0-22 % of trials, not 96 %).
-  std::vector<TranslationCandidate> Find(const std::vector<Eigen::Vector2f>& scored_walls,
-                                         const std::vector<Eigen::Vector2f>& walls,
-                                         const std::vector<Eigen::Vector2f>& free);
-  // Find for the points as given (result[0]) and turned by a further half turn, q -> -q
-  // (result[1]): the Hough spectrum cannot tell psi from psi + pi (Section III-A), so both are
-  // searched, and the half-turned images are the given ones flipped, which the correlator
-  // serves from the same forward transforms. Pass one vector as scored_walls and walls when
-  // every wall is scored.
-  // `box`: Bounds of these points when the caller has it (nullptr: computed here).
+  // Translation candidates for b's cell centres, rotated by the hypothesis: scored_walls, the
+  // occupied cells that vote (sampled, Section III-D); walls, every occupied cell, and free,
+  // every free cell, which say where b is open. Open space must come from all walls: a wall
+  // left out of a sample would turn its pixel open and penalise a's wall there (every k-th
+  // point of a row-major list drops whole walls for k >= 6, and the true pose was then found in
+  // 0-22 % of trials, not 96 %). For the points as given (result[0]) and turned by a further
+  // half turn, q -> -q (result[1]): the Hough spectrum cannot tell psi from psi + pi (Section
+  // III-A), so both are searched, and the half-turned images are the given ones flipped, which the
+  // correlator serves from the same forward transforms. Pass one vector as scored_walls and walls
+  // when every wall is scored. `box`: Bounds of these points when the caller has it (nullptr:
+  // computed here).
   std::array<std::vector<TranslationCandidate>, 2> FindWithHalfTurn(
       const std::vector<Eigen::Vector2f>& scored_walls, const std::vector<Eigen::Vector2f>& walls,
       const std::vector<Eigen::Vector2f>& free, const PointBox* box = nullptr);
   int pooling() const { return pooling_; }
 
-  // A search for another thread (Find changes the correlator's work buffers): the same fixed
+  // A search for another thread (a search changes the correlator's work buffers): the same fixed
   // layers and transforms, shared; buffers of its own.
   CorrelationTranslation WithOwnBuffers() const;
 
@@ -101,6 +95,10 @@ class CorrelationTranslation {
     std::vector<cv::Mat1f> layers;
     Eigen::Vector2f q_min;
   };
+  // Peaks of a correlation surface (pixel positions, b's images w x h = b_pixels) to the
+  // translations t in cells, for b's image anchored at `anchor` (its first pixel's corner).
+  void ToTranslations(cv::Size b_pixels, const Eigen::Vector2d& anchor,
+                      std::vector<TranslationCandidate>& peaks) const;
   BLayers RasterizeB(const std::vector<Eigen::Vector2f>& scored_walls,
                      const std::vector<Eigen::Vector2f>& walls,
                      const std::vector<Eigen::Vector2f>& free, const PointBox& box) const;
