@@ -1,6 +1,7 @@
 #include "core/point_sampling.hpp"
 
 #include <algorithm>
+#include <array>
 #include <numeric>
 #include <random>
 #include <sstream>
@@ -13,55 +14,60 @@ std::vector<Eigen::Vector2f> OccupiedCellCenters(const OccupancyGrid& grid) {
   return CellCenters(grid, CellState::kOccupied);
 }
 
-std::vector<Eigen::Vector2f> CellCenters(const OccupancyGrid& grid, CellState state) {
-  std::vector<Eigen::Vector2f> points;
-  const auto wanted = static_cast<std::uint8_t>(state);
-  // Counted first: free cells run to 10^5-10^6, and growing the vector by doubling moved them
-  // ~20 times.
-  std::size_t count = 0;
-  for (int j = 0; j < grid.height(); ++j) {
-    const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
-    for (int i = 0; i < grid.width(); ++i) count += row[i] == wanted;
-  }
-  // Sized once and written in place: emplace_back's capacity check and call per point were 5 %
-  // of the hypothesis search.
-  points.resize(count);
-  Eigen::Vector2f* out = points.data();
+namespace {
+
+// The centres of the cells of each state asked for (lists[state]; nullptr: not wanted), row by
+// row: counted in one pass, then written in place into lists sized once (emplace_back's call
+// and capacity check per point were 5 % of the hypothesis search; free cells run to 10^5-10^6).
+void CentresByState(const OccupancyGrid& grid,
+                    const std::array<std::vector<Eigen::Vector2f>*, 3>& lists) {
+  constexpr auto kFree = static_cast<std::uint8_t>(CellState::kFree);
+  constexpr auto kOccupied = static_cast<std::uint8_t>(CellState::kOccupied);
+  std::array<std::size_t, 3> counts{};
   for (int j = 0; j < grid.height(); ++j) {
     const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
     for (int i = 0; i < grid.width(); ++i) {
-      if (row[i] == wanted) *out++ = Eigen::Vector2f(i + 0.5f, j + 0.5f);
+      counts[kFree] += row[i] == kFree;
+      counts[kOccupied] += row[i] == kOccupied;
     }
   }
+  // The rest is unknown (at most: each list is cut to what was written below).
+  counts[static_cast<std::uint8_t>(CellState::kUnknown)] =
+      grid.cells().total() - counts[kFree] - counts[kOccupied];
+  std::array<Eigen::Vector2f*, 3> out{};
+  for (std::size_t state = 0; state < 3; ++state) {
+    if (lists[state] == nullptr) continue;
+    lists[state]->resize(counts[state]);
+    out[state] = lists[state]->data();
+  }
+  for (int j = 0; j < grid.height(); ++j) {
+    const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
+    for (int i = 0; i < grid.width(); ++i) {
+      if (row[i] < 3 && out[row[i]] != nullptr)
+        *out[row[i]]++ = Eigen::Vector2f(i + 0.5f, j + 0.5f);
+    }
+  }
+  for (std::size_t state = 0; state < 3; ++state) {
+    if (lists[state] != nullptr) lists[state]->resize(out[state] - lists[state]->data());
+  }
+}
+
+}  // namespace
+
+std::vector<Eigen::Vector2f> CellCenters(const OccupancyGrid& grid, CellState state) {
+  std::vector<Eigen::Vector2f> points;
+  std::array<std::vector<Eigen::Vector2f>*, 3> lists{};
+  lists[static_cast<std::uint8_t>(state)] = &points;
+  CentresByState(grid, lists);
   return points;
 }
 
 void OccupiedAndFreeCellCenters(const OccupancyGrid& grid, std::vector<Eigen::Vector2f>* occupied,
                                 std::vector<Eigen::Vector2f>* free) {
-  const auto occupied_state = static_cast<std::uint8_t>(CellState::kOccupied);
-  const auto free_state = static_cast<std::uint8_t>(CellState::kFree);
-  std::size_t occupied_count = 0, free_count = 0;
-  for (int j = 0; j < grid.height(); ++j) {
-    const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
-    for (int i = 0; i < grid.width(); ++i) {
-      occupied_count += row[i] == occupied_state;
-      free_count += row[i] == free_state;
-    }
-  }
-  occupied->resize(occupied_count);  // written in place, as CellCenters does
-  free->resize(free_count);
-  Eigen::Vector2f* occupied_out = occupied->data();
-  Eigen::Vector2f* free_out = free->data();
-  for (int j = 0; j < grid.height(); ++j) {
-    const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
-    for (int i = 0; i < grid.width(); ++i) {
-      if (row[i] == occupied_state) {
-        *occupied_out++ = Eigen::Vector2f(i + 0.5f, j + 0.5f);
-      } else if (row[i] == free_state) {
-        *free_out++ = Eigen::Vector2f(i + 0.5f, j + 0.5f);
-      }
-    }
-  }
+  std::array<std::vector<Eigen::Vector2f>*, 3> lists{};
+  lists[static_cast<std::uint8_t>(CellState::kOccupied)] = occupied;
+  lists[static_cast<std::uint8_t>(CellState::kFree)] = free;
+  CentresByState(grid, lists);
 }
 
 std::vector<Eigen::Vector2f> SamplePoints(const std::vector<Eigen::Vector2f>& points,

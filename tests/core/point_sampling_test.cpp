@@ -60,15 +60,23 @@ TEST(OccupiedCellCenters, UsesCellCentresFromTheBottomRow) {
   EXPECT_EQ(p[1], Eigen::Vector2f(1.5f, 2.5f));
 }
 
-TEST(OccupiedAndFreeCellCenters, GivesBothListsInScanOrderLikeCellCenters) {
+TEST(OccupiedAndFreeCellCenters, GivesTheListsInScanOrderLikeCellCenters) {
   std::mt19937 rng(3);
   OccupancyGrid g(GridGeometry(0.05, {37, 29}));
   for (int j = 0; j < g.height(); ++j)
     for (int i = 0; i < g.width(); ++i) g.set({i, j}, static_cast<CellState>(rng() % 3));
+  // The lists by hand, cell by cell in scan order.
+  std::vector<Eigen::Vector2f> want[3];
+  for (int j = 0; j < g.height(); ++j)
+    for (int i = 0; i < g.width(); ++i)
+      want[static_cast<int>(g.at({i, j}))].emplace_back(i + 0.5f, j + 0.5f);
   std::vector<Eigen::Vector2f> occupied = {Eigen::Vector2f(9, 9)}, free;  // replaced
   OccupiedAndFreeCellCenters(g, &occupied, &free);
-  EXPECT_EQ(occupied, CellCenters(g, CellState::kOccupied));
-  EXPECT_EQ(free, CellCenters(g, CellState::kFree));
+  EXPECT_EQ(occupied, want[static_cast<int>(CellState::kOccupied)]);
+  EXPECT_EQ(free, want[static_cast<int>(CellState::kFree)]);
+  for (const CellState state : {CellState::kUnknown, CellState::kFree, CellState::kOccupied}) {
+    EXPECT_EQ(CellCenters(g, state), want[static_cast<int>(state)]);
+  }
   EXPECT_EQ(occupied.size() + free.size() + g.Count(CellState::kUnknown), 37u * 29u);
 }
 
