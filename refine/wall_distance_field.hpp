@@ -27,15 +27,10 @@ class WallDistanceField {
   WallDistanceField(const WallDistanceField&) = delete;
   WallDistanceField& operator=(const WallDistanceField&) = delete;
 
-  // Distance (cells) at a point of the grid frame given in cells; T may be a ceres::Jet.
-  template <typename T>
-  void Evaluate(const T& x_cells, const T& y_cells, T* distance) const {
-    // Cell (i, j) has its centre at (i + .5, j + .5); the stored field starts at cell
-    // `offset_` (the walls' bounding box less a margin). Beyond its edges the interpolator
-    // repeats the border, which is the truncation value: flat, so no force.
-    interpolator_->Evaluate(y_cells - (offset_.y() + 0.5), x_cells - (offset_.x() + 0.5), distance);
-  }
-  // The same with the gradient (d distance / d x, d distance / d y), for analytic Jacobians.
+  // Distance (cells) at a point of the grid frame given in cells, with its gradient (d distance
+  // / d x, d distance / d y) for analytic Jacobians. Cell (i, j) has its centre at (i + .5,
+  // j + .5); the stored field starts at cell `offset_` (the walls' bounding box less a margin),
+  // and beyond its edges the interpolator repeats the border, which is the truncation value.
   // Returns true where the field is flat (the truncation value, gradient 0): there the
   // interpolation is skipped, with the result it would have given (bicubic Hermite splines
   // through equal samples are that value exactly, slope 0).
