@@ -1,7 +1,6 @@
 #include "cli/pair_command.hpp"
 
 #include <cmath>
-#include <exception>
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -152,19 +151,9 @@ int RunPairCommand(const PairCommand& command, std::ostream& out) {
   const bool same =
       std::filesystem::equivalent(maps[0].path, maps[1].path, ec) && maps[0].topic == maps[1].topic;
   if (!same) maps = ExpandMapInputs(both);  // a map paired with itself keeps its one name
-  // Both maps loaded at once; a failure is reported for the first map that fails, in order.
+  // Both maps loaded at once; a failure names a before b (ParallelFor rethrows the lowest index).
   std::optional<LoadedMap> loaded[2];
-  std::exception_ptr failures[2];
-  ParallelFor(2, command.threads, [&](std::size_t k) {
-    try {
-      loaded[k] = LoadJobMap(maps[k]);
-    } catch (...) {
-      failures[k] = std::current_exception();
-    }
-  });
-  for (const auto& failure : failures) {
-    if (failure) std::rethrow_exception(failure);
-  }
+  ParallelFor(2, command.threads, [&](std::size_t k) { loaded[k] = LoadJobMap(maps[k]); });
   const LoadedMap& a = *loaded[0];
   const LoadedMap& b = *loaded[1];
   CheckResampledSizes({&a, &b}, 0.0, kDefaultMaxMapCells);

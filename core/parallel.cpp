@@ -11,15 +11,16 @@ namespace fleetmerge {
 
 void ParallelFor(std::size_t count, int threads, const std::function<void(std::size_t)>& body) {
   std::atomic<std::size_t> next{0};
-  std::mutex mutex;  // guards `failure`
+  std::mutex mutex;  // guards `failure` and `failed_index`
   std::exception_ptr failure;
+  std::size_t failed_index = count;
   const auto worker = [&] {
     for (std::size_t k = next++; k < count; k = next++) {
       try {
         body(k);
       } catch (...) {
         const std::lock_guard<std::mutex> lock(mutex);
-        if (!failure) failure = std::current_exception();
+        if (k < failed_index) failure = std::current_exception(), failed_index = k;
       }
     }
   };

@@ -1,11 +1,11 @@
 #include "pipeline/job_run.hpp"
 
 #include <chrono>
-#include <exception>
 #include <optional>
 #include <utility>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "io/atomic_file.hpp"
 #include "io/map_inputs.hpp"
 #include "io/octree_io.hpp"
@@ -13,7 +13,6 @@
 #include "io/result_folder.hpp"
 #include "pipeline/html_report.hpp"
 #include "pipeline/launch_files.hpp"
-#include "core/parallel.hpp"
 #include "pipeline/preview.hpp"
 #include "pipeline/report_json.hpp"
 
@@ -56,21 +55,14 @@ std::vector<std::string> WriteOutputs(const std::filesystem::path& dir, const Fl
 std::vector<LoadedMap> LoadJobMaps(const Job& job, int threads, std::vector<JobOctree>& octrees) {
   octrees.assign(job.maps.size(), {});
   std::vector<std::optional<LoadedMap>> loaded(job.maps.size());
-  std::vector<std::exception_ptr> failures(job.maps.size());
+  // A failure names the first failing map in job order (ParallelFor rethrows the lowest index).
   ParallelFor(job.maps.size(), threads, [&](std::size_t m) {
-    try {
-      const auto& path = job.maps[m].path;
-      loaded[m] = IsOctreePath(path) ? LoadOctreeMap(path, job.options.octree, octrees[m])
-                                     : LoadJobMap(job.maps[m], job.options.max_map_cells);
-    } catch (...) {  // kept per map so that the first in job order is the one reported
-      failures[m] = std::current_exception();
-    }
+    const auto& path = job.maps[m].path;
+    loaded[m] = IsOctreePath(path) ? LoadOctreeMap(path, job.options.octree, octrees[m])
+                                   : LoadJobMap(job.maps[m], job.options.max_map_cells);
   });
   std::vector<LoadedMap> out;
-  for (std::size_t m = 0; m < job.maps.size(); ++m) {
-    if (failures[m]) std::rethrow_exception(failures[m]);
-    out.push_back(std::move(*loaded[m]));
-  }
+  for (auto& map : loaded) out.push_back(std::move(*map));
   return out;
 }
 
