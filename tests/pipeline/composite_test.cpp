@@ -193,18 +193,32 @@ TEST(SampleOnto, MatchesTheDirectCellOfLookupAtRandomPoses) {
   }
 }
 
-TEST(Composite, EightOfficeMapsOf600By600CompositeQuickly) {
-  OfficeOptions options;
-  options.width_m = 30.0;
-  options.height_m = 30.0;  // 600 x 600 cells at 0.05 m
+// `count` synthetic offices (seeds 0, 1, ...) of width_m x height_m, each at a random pose:
+// translation within +-max_shift_m per axis, any yaw.
+struct PlacedOffices {
+  PlacedOffices(int count, double width_m, double height_m, double max_shift_m,
+                std::uint32_t seed) {
+    OfficeOptions options;
+    options.width_m = width_m;
+    options.height_m = height_m;
+    std::mt19937 rng(seed);
+    for (int k = 0; k < count; ++k) {
+      maps.push_back(GenerateOfficeFloor(options, static_cast<std::uint32_t>(k)));
+    }
+    for (const OccupancyGrid& map : maps) {
+      inputs.push_back(
+          {&map, Pose2(Uniform(rng, -max_shift_m, max_shift_m),
+                       Uniform(rng, -max_shift_m, max_shift_m), Uniform(rng, -M_PI, M_PI))});
+    }
+  }
+  PlacedOffices(const PlacedOffices&) = delete;  // inputs point into maps
   std::vector<OccupancyGrid> maps;
   std::vector<CompositeInput> inputs;
-  std::mt19937 rng(99);
-  for (std::uint32_t k = 0; k < 8; ++k) maps.push_back(GenerateOfficeFloor(options, k));
-  for (const OccupancyGrid& map : maps) {
-    inputs.push_back(
-        {&map, Pose2(Uniform(rng, -10, 10), Uniform(rng, -10, 10), Uniform(rng, -M_PI, M_PI))});
-  }
+};
+
+TEST(Composite, EightOfficeMapsOf600By600CompositeQuickly) {
+  const PlacedOffices offices(8, 30.0, 30.0, 10.0, 99);  // 600 x 600 cells at 0.05 m
+  const std::vector<CompositeInput>& inputs = offices.inputs;
   double best_ms = 1e9;
   OccupancyGrid merged;
   for (int run = 0; run < 3; ++run) {
@@ -222,17 +236,8 @@ TEST(Composite, EightOfficeMapsOf600By600CompositeQuickly) {
 }
 
 TEST(Composite, MergedGridAndPreviewAreTheSameForAnyThreadCount) {
-  OfficeOptions options;
-  options.width_m = 20.0;
-  options.height_m = 15.0;
-  std::vector<OccupancyGrid> maps;
-  std::vector<CompositeInput> inputs;
-  std::mt19937 rng(7);
-  for (std::uint32_t k = 0; k < 5; ++k) maps.push_back(GenerateOfficeFloor(options, k));
-  for (const OccupancyGrid& map : maps) {
-    inputs.push_back(
-        {&map, Pose2(Uniform(rng, -5, 5), Uniform(rng, -5, 5), Uniform(rng, -M_PI, M_PI))});
-  }
+  const PlacedOffices offices(5, 20.0, 15.0, 5.0, 7);
+  const std::vector<CompositeInput>& inputs = offices.inputs;
   const OccupancyGrid one = Composite(inputs, 0.05, FusionMode::kLogOdds, 1);
   ASSERT_GT(one.height(), 64 * 3);  // several bands of rows
   const cv::Mat3b preview_one = ColourPreview(inputs, one, 1);
