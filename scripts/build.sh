@@ -4,5 +4,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install_deps.sh
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFLEETMERGE_BUILD_BENCHMARKS=ON "$@"
+# ccache (installed by install_deps.sh) lets a second build of the same sources (another build
+# folder, a colcon workspace, a package build) reuse the objects of the first.
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFLEETMERGE_BUILD_BENCHMARKS=ON "${launcher[@]}" "$@"
 cmake --build build -j"$jobs"

@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake git pkg-config
+  build-essential cmake git pkg-config ccache
   libeigen3-dev libceres-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   liboctomap-dev libyaml-cpp-dev libspng-dev
