@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "core/resample.hpp"
 #include "io/map_inputs.hpp"
 #include "io/map_io.hpp"
 #include "io/resampled_size.hpp"
@@ -74,16 +75,19 @@ HtmlReport PairPage(const PairCommand& command, const LoadedMap& a, const Loaded
   return page;
 }
 
-// Composites a (identity) and b (at the best hypothesis) and writes map + preview atomically,
-// never over an input file.
+// Composites a (identity) and b (at the best hypothesis) on a's cells, as merge does with its
+// reference map, and writes map + preview atomically, never over an input file.
 MergedFiles WriteMerged(const PairCommand& command, const LoadedMap& a, const LoadedMap& b,
                         const PairResult& result) {
   const std::filesystem::path& dir = *command.out_dir;
   std::filesystem::create_directories(dir);
+  const double resolution_m = a.grid.geometry().resolution_m();
+  // A finer b is coarsened first: a nearest-cell lookup would drop its one-cell walls.
+  const OccupancyGrid b_at_a = ResampleToResolution(b.grid, resolution_m);
   const std::vector<CompositeInput> inputs = {{&a.grid, Pose2()},
-                                              {&b.grid, result.hypotheses.front().T_a_b}};
+                                              {&b_at_a, result.hypotheses.front().T_a_b}};
   const OccupancyGrid merged =
-      Composite(inputs, result.resolution_m, FusionMode::kLogOdds, command.threads);
+      Composite(inputs, resolution_m, FusionMode::kLogOdds, command.threads, /*reference=*/0);
   std::vector<std::filesystem::path> protect;  // the inputs (a bag's map has no image path)
   for (const auto& p :
        {a.metadata.yaml_path, a.metadata.image_path, b.metadata.yaml_path, b.metadata.image_path}) {

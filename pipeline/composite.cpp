@@ -90,7 +90,8 @@ void SampleRegion(const CompositeInput& input, const CellAffine& affine, const c
   }
 }
 
-void ValidateInputs(const std::vector<CompositeInput>& inputs, double resolution_m) {
+void ValidateInputs(const std::vector<CompositeInput>& inputs, double resolution_m,
+                    int reference_input) {
   if (!(resolution_m > 0.0) || !std::isfinite(resolution_m)) {
     std::ostringstream msg;
     msg << "composite: merged resolution must be a finite number > 0 m, got " << resolution_m;
@@ -104,12 +105,29 @@ void ValidateInputs(const std::vector<CompositeInput>& inputs, double resolution
       throw Error("composite: input " + std::to_string(k) + " has no grid (null pointer)");
     }
   }
+  if (reference_input < -1 || reference_input >= static_cast<int>(inputs.size())) {
+    throw Error("composite: reference input " + std::to_string(reference_input) +
+                " is not -1 or one of the " + std::to_string(inputs.size()) + " inputs");
+  }
 }
 
-// Axis-aligned merged geometry around all known cells plus a one-cell margin; a 0 x 0 geometry
-// when no input has a known cell. The origin is not snapped to a multiple of the resolution, so
-// an input at identity pose and the same resolution keeps its cell boundaries.
-GridGeometry MergedGeometry(const std::vector<CompositeInput>& inputs, double resolution_m) {
+// The merged grid frame's pose in the merged frame before it is moved to the known cells: the
+// reference grid's frame, or the merged frame itself.
+Pose2 LatticeFrame(const std::vector<CompositeInput>& inputs, int reference_input) {
+  if (reference_input < 0) return Pose2();
+  const CompositeInput& reference = inputs[static_cast<std::size_t>(reference_input)];
+  return reference.T_merged_map * reference.grid->geometry().T_map_grid();
+}
+
+// The merged geometry around all known cells plus a one-cell margin, on the lattice of whole
+// cells from LatticeFrame; a 0 x 0 geometry when no input has a known cell. Without a reference
+// the corner is not snapped to the lattice (an input at identity pose and the same resolution
+// keeps its cell boundaries only if it has the lowest corner); with one it is, so the reference
+// always keeps them.
+GridGeometry MergedGeometry(const std::vector<CompositeInput>& inputs, double resolution_m,
+                            int reference_input) {
+  const Pose2 T_merged_lattice = LatticeFrame(inputs, reference_input);
+  const Pose2 T_lattice_merged = T_merged_lattice.inverse();
   Eigen::Array2d lo = Eigen::Array2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Array2d hi = -lo;
   for (const CompositeInput& input : inputs) {
@@ -118,22 +136,32 @@ GridGeometry MergedGeometry(const std::vector<CompositeInput>& inputs, double re
     const cv::Rect known = cv::boundingRect(input.grid->cells());
     if (known.area() == 0) continue;
     const GridGeometry& g = input.grid->geometry();
-    const Pose2 T_merged_grid = input.T_merged_map * g.T_map_grid();
+    const Pose2 T_lattice_grid = T_lattice_merged * input.T_merged_map * g.T_map_grid();
     for (const int x : {known.x, known.x + known.width}) {
       for (const int y : {known.y, known.y + known.height}) {
         const Eigen::Array2d c =
-            (T_merged_grid * (Eigen::Vector2d(x, y) * g.resolution_m())).array();
+            (T_lattice_grid * (Eigen::Vector2d(x, y) * g.resolution_m())).array();
         lo = lo.min(c);
         hi = hi.max(c);
       }
     }
   }
-  if (!(lo <= hi).all()) return GridGeometry(resolution_m, {0, 0});
-  const Eigen::Array2d origin_m = lo - resolution_m;
-  const Eigen::Array2d cells = (hi - lo) / resolution_m + 2.0;  // + margin on both sides
-  const Eigen::Array2i size(static_cast<int>(std::ceil(cells.x() - kIndexSlack)),
-                            static_cast<int>(std::ceil(cells.y() - kIndexSlack)));
-  return GridGeometry(resolution_m, size, Pose2(origin_m.matrix(), 0.0));
+  if (!(lo <= hi).all()) return GridGeometry(resolution_m, {0, 0}, T_merged_lattice);
+  if (reference_input < 0) {
+    const Eigen::Array2d origin_m = lo - resolution_m;
+    const Eigen::Array2d cells = (hi - lo) / resolution_m + 2.0;  // + margin on both sides
+    const Eigen::Array2i size(static_cast<int>(std::ceil(cells.x() - kIndexSlack)),
+                              static_cast<int>(std::ceil(cells.y() - kIndexSlack)));
+    return GridGeometry(resolution_m, size, Pose2(origin_m.matrix(), 0.0));
+  }
+  // Whole lattice cells from the one holding lo to the one holding hi, plus the margin. The
+  // reference's own corners sit on the lattice; the slack keeps 12.000000000001 from adding a
+  // cell (it would only widen the margin).
+  const Eigen::Array2d lo_cells = (lo / resolution_m + kIndexSlack).floor() - 1.0;
+  const Eigen::Array2d hi_cells = (hi / resolution_m - kIndexSlack).ceil() + 1.0;
+  const Eigen::Array2i size = (hi_cells - lo_cells).cast<int>();
+  return GridGeometry(resolution_m, size,
+                      T_merged_lattice * Pose2((lo_cells * resolution_m).matrix(), 0.0));
 }
 
 }  // namespace
@@ -164,9 +192,9 @@ OccupancyGrid SampleOnto(const CompositeInput& input, const GridGeometry& target
 }
 
 OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolution_m,
-                        FusionMode mode, int threads) {
-  ValidateInputs(inputs, resolution_m);
-  const GridGeometry geometry = MergedGeometry(inputs, resolution_m);
+                        FusionMode mode, int threads, int reference_input) {
+  ValidateInputs(inputs, resolution_m, reference_input);
+  const GridGeometry geometry = MergedGeometry(inputs, resolution_m, reference_input);
   const cv::Size size(geometry.width(), geometry.height());
   std::vector<CellAffine> affines;
   std::vector<cv::Rect> regions;

@@ -1,14 +1,18 @@
 // Compositing several occupancy grids, each placed by a pose in a common "merged" frame, into one
 // merged grid.
 //
-// The merged grid is axis-aligned in the merged frame (its T_map_grid is a translation only) and
-// covers the bounding box of every input's known cells, transformed into the merged frame, plus
-// one cell of unknown margin on each side. Each merged cell centre is carried back into every
-// input map by the inverse pose and takes that map's nearest cell (the cell containing the
-// point, as GridGeometry::CellOf does). Pulling from the inputs this way, rather than pushing
-// input cells forward, leaves no holes when a map is rotated or has finer cells. Nearest-cell
-// lookup can drop one-cell walls when the merged cells are coarser than an input's: resample such
-// inputs first with ResampleToResolution (core/resample.hpp), which keeps them.
+// The merged grid covers the bounding box of every input's known cells, transformed into the
+// merged frame, plus one cell of unknown margin on each side. With a reference input (the map
+// whose frame is the merged frame) its cells are the reference grid's cells, extended by whole
+// cells: same orientation, same cell boundaries, so at the reference's resolution a cell that
+// only the reference knows comes out exactly as it is (users navigate in that map). Without one
+// the merged grid is axis-aligned in the merged frame with its corner at the known cells' corner.
+// Each merged cell centre is carried back into every input map by the inverse pose and takes that
+// map's nearest cell (the cell containing the point, as GridGeometry::CellOf does). Pulling from
+// the inputs this way, rather than pushing input cells forward, leaves no holes when a map is
+// rotated or has finer cells. Nearest-cell lookup can drop one-cell walls when the merged cells are
+// coarser than an input's: resample such inputs first with ResampleToResolution
+// (core/resample.hpp), which keeps them.
 //
 // Fusion of the per-map states of one merged cell (unknown never votes; a cell no map knows
 // stays kUnknown in every mode):
@@ -43,11 +47,13 @@ struct CompositeInput {
 };
 
 // The merged grid at resolution_m. With no known cell in any input it is an empty (0 x 0) grid.
-// Throws fleetmerge::Error unless resolution_m is a finite number > 0 and every grid is set.
-// Bands of merged rows are fused on `threads` threads (<= 0: all cores): the same grid for any
-// count.
+// `reference_input` indexes `inputs` (-1: none): the merged cells are on its cell lattice.
+// Throws fleetmerge::Error unless resolution_m is a finite number > 0, every grid is set and
+// reference_input is -1 or an index. Bands of merged rows are fused on `threads` threads (<= 0:
+// all cores): the same grid for any count.
 OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolution_m,
-                        FusionMode mode = FusionMode::kLogOdds, int threads = 1);
+                        FusionMode mode = FusionMode::kLogOdds, int threads = 1,
+                        int reference_input = -1);
 
 // One input's state at the centre of every cell of `target` (whose map frame is the merged
 // frame): the lookup Composite fuses, also used to colour previews. kUnknown where the centre

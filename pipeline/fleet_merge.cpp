@@ -7,11 +7,11 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "core/resample.hpp"
 #include "pipeline/composite.hpp"
 #include "pipeline/corroboration.hpp"
 #include "pipeline/fleet_graph.hpp"
-#include "core/parallel.hpp"
 #include "pipeline/weak_bridges.hpp"
 
 namespace fleetmerge {
@@ -90,6 +90,34 @@ void RejectWeakBridge(double min_bridge_wall_agreement, PairOutcome& pair) {
   pair.note = note.str();
 }
 
+// The component's merged map, on its reference map's cells: at the job's resolution when the
+// job sets one, else at the reference's own. Users navigate in the reference robot's map, so
+// where only that map knows a cell the merged map holds that very cell. Inputs finer than the
+// merged cells are coarsened from the original maps first (ResampleToResolution keeps one-cell
+// walls that a nearest-cell lookup would drop).
+OccupancyGrid CompositeComponent(const std::vector<const OccupancyGrid*>& maps,
+                                 const FleetResult& result, const FleetComponent& component,
+                                 const FleetOptions& options) {
+  const double resolution_m = options.resolution_m > 0.0
+                                  ? options.resolution_m
+                                  : maps[component.reference]->geometry().resolution_m();
+  const bool compared_cells = std::abs(resolution_m - result.resolution_m) <= 1e-9 * resolution_m;
+  std::vector<OccupancyGrid> resampled;  // only when the merged cells are not the compared ones
+  resampled.reserve(component.maps.size());
+  std::vector<CompositeInput> inputs;
+  int reference_input = -1;
+  for (const int m : component.maps) {
+    if (m == component.reference) reference_input = static_cast<int>(inputs.size());
+    const OccupancyGrid* grid = &result.maps[m];
+    if (!compared_cells) {
+      resampled.push_back(ResampleToResolution(*maps[m], resolution_m));
+      grid = &resampled.back();
+    }
+    inputs.push_back({grid, result.T_component_map[m]});
+  }
+  return Composite(inputs, resolution_m, options.fusion, options.threads, reference_input);
+}
+
 }  // namespace
 
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
@@ -148,18 +176,15 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   for (std::size_t c = 0; c < result.components.size(); ++c) {
     FleetComponent& component = result.components[c];
     component.reference = graph.component_reference[c];
-    std::vector<CompositeInput> inputs;
     for (int m = 0; m < static_cast<int>(maps.size()); ++m) {
-      if (graph.component_of[m] != static_cast<int>(c)) continue;
-      component.maps.push_back(m);
-      inputs.push_back({&result.maps[m], result.T_component_map[m]});
+      if (graph.component_of[m] == static_cast<int>(c)) component.maps.push_back(m);
     }
     if (maps.size() == 1) {
       // A one-map job: that map is the merged map, as it is (even all unknown, or 1 x 1 cell;
       // compositing would crop it to its known cells).
       component.merged = result.maps.front();
-    } else if (inputs.size() >= 2) {
-      component.merged = Composite(inputs, result.resolution_m, options.fusion, options.threads);
+    } else if (component.maps.size() >= 2) {
+      component.merged = CompositeComponent(maps, result, component, options);
     }
     if (progress) progress("composite", static_cast<int>(c) + 1, int(result.components.size()));
   }

@@ -74,6 +74,44 @@ TEST(Composite, MapWithHalfTurnGridOriginKeepsEveryCell) {
   ExpectSameWorld(Composite({{&grid, T_merged_map}}, 0.05), grid, T_merged_map);
 }
 
+TEST(Composite, ReferenceKeepsItsCellsWhenAnotherMapReachesLower) {
+  // The reference's grid corner is off the other map's lattice by a fraction of a cell, and its
+  // grid frame is turned by 0 or pi (real map files carry both); the other map is rotated and
+  // reaches below and left of it, so the merged grid's corner is not the reference's.
+  for (const double grid_yaw_rad : {0.0, M_PI}) {
+    const OccupancyGrid reference =
+        PatternGrid(GridGeometry(0.05, {40, 30}, Pose2(0.013, -0.027, grid_yaw_rad)), 21, 3);
+    const OccupancyGrid other = PatternGrid(GridGeometry(0.05, {30, 30}), 22, 0);
+    const Pose2 T_merged_other(-1.3, -0.9, 0.4);
+    for (const FusionMode mode : kAllModes) {
+      const OccupancyGrid merged =
+          Composite({{&reference, Pose2()}, {&other, T_merged_other}}, 0.05, mode, 1, 0);
+      const OccupancyGrid other_on_merged = SampleOnto({&other, T_merged_other}, merged.geometry());
+      int only_reference = 0;
+      for (int j = 0; j < reference.height(); ++j) {
+        for (int i = 0; i < reference.width(); ++i) {
+          if (reference.at({i, j}) == CellState::kUnknown) continue;  // outside the merged grid
+          const Eigen::Vector2d p = reference.geometry().CellCenter({i, j});
+          const Eigen::Array2i cell = merged.geometry().CellOf(p);
+          ASSERT_TRUE(merged.geometry().Contains(cell));
+          ASSERT_LT((merged.geometry().CellCenter(cell) - p).norm(), 1e-9) << i << ", " << j;
+          if (other_on_merged.at(cell) != CellState::kUnknown) continue;
+          ++only_reference;
+          ASSERT_EQ(merged.at(cell), reference.at({i, j})) << i << ", " << j;
+        }
+      }
+      EXPECT_GT(only_reference, 300);
+      // Not vacuous: alone, the reference's lowest known cell (3, 3) would be the merged grid's
+      // cell (1, 1) (the margin); the other map pushes the corner further down or left.
+      const Eigen::Vector2d lowest_known_in_merged_grid =
+          merged.geometry().T_map_grid().inverse() * reference.geometry().CellCenter({3, 3});
+      EXPECT_GT(lowest_known_in_merged_grid.maxCoeff(), 2.5 * 0.05);
+    }
+  }
+  const OccupancyGrid grid = PatternGrid(GridGeometry(0.05, {5, 5}), 1, 0);
+  EXPECT_THROW(Composite({{&grid, Pose2()}}, 0.05, FusionMode::kLogOdds, 1, 1), Error);
+}
+
 TEST(Composite, TwoHalvesPlacedByRotationAndTranslationRebuildTheOriginal) {
   const OccupancyGrid original = PatternGrid(GridGeometry(0.1, {20, 12}), 3, 0);
   ASSERT_NE(original.at({0, 0}), CellState::kUnknown);  // so the known box is the whole grid

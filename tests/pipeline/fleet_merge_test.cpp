@@ -5,11 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <opencv2/imgproc.hpp>
 #include <random>
 
 #include "core/acceptance_index.hpp"
 #include "core/hypothesis_generator.hpp"
+#include "core/resample.hpp"
 #include "io/map_io.hpp"
+#include "pipeline/composite.hpp"
 #include "sim/ground_truth_pair.hpp"
 #include "tests/support/shared_data.hpp"
 
@@ -112,6 +115,75 @@ TEST(FleetMerge, ForeignMapStaysUnmergedAndTwoBuildingsGiveTwoComponents) {
   PrintPairs("intel+csail", intel, two);
   EXPECT_EQ(two.components.size(), 2u);
   for (int m = 0; m < 8; ++m) EXPECT_EQ(two.component_of[m], m < 4 ? 0 : 1) << m;
+}
+
+// Users navigate in the reference robot's map: the merged grid must hold its cells as they are,
+// also when another map reaches lower than the reference (the merged grid's corner is then not
+// the reference's) and when the reference is coarser than the other maps.
+void ExpectReferenceCellForCell(const FleetResult& result, const std::vector<OccupancyGrid>& maps,
+                                int reference) {
+  const FleetComponent& component = result.components[result.component_of[reference]];
+  ASSERT_EQ(component.reference, reference);
+  ASSERT_TRUE(component.merged.has_value());
+  const OccupancyGrid& merged = *component.merged;
+  const OccupancyGrid& ref = maps[reference];
+  EXPECT_DOUBLE_EQ(merged.geometry().resolution_m(), ref.geometry().resolution_m());
+  // Not vacuous: some other map reaches below or left of the reference's known cells.
+  const cv::Rect known = cv::boundingRect(ref.cells());
+  const Eigen::Vector2d ref_corner_in_merged =
+      merged.geometry().T_map_grid().inverse() * ref.geometry().T_map_grid() *
+      Eigen::Vector2d(known.x, known.y) * ref.geometry().resolution_m();
+  ASSERT_TRUE((ref_corner_in_merged.array() > 1.5 * ref.geometry().resolution_m()).any())
+      << "the reference has the lowest corner: pick another";
+  // The other maps' states on the merged cells, as compositing sees them (SampleOnto is tested
+  // against a cell-by-cell lookup in composite_test).
+  std::vector<OccupancyGrid> others;
+  for (const int m : component.maps) {
+    if (m == reference) continue;
+    const OccupancyGrid at_merged = ResampleToResolution(maps[m], merged.geometry().resolution_m());
+    others.push_back(SampleOnto({&at_merged, result.T_component_map[m]}, merged.geometry()));
+  }
+  std::int64_t only_reference = 0, checked = 0;
+  for (int j = 0; j < ref.height(); ++j) {
+    for (int i = 0; i < ref.width(); ++i) {
+      if (ref.at({i, j}) == CellState::kUnknown) continue;
+      const Eigen::Vector2d p = ref.geometry().CellCenter({i, j});  // merged frame = ref's frame
+      const Eigen::Array2i cell = merged.geometry().CellOf(p);
+      ASSERT_TRUE(merged.geometry().Contains(cell));
+      // The same cell, not a neighbour half a cell off.
+      ASSERT_LT((merged.geometry().CellCenter(cell) - p).norm(), 1e-6) << i << ", " << j;
+      ++checked;
+      bool others_unknown = true;
+      for (const OccupancyGrid& sampled : others) {
+        if (sampled.at(cell) != CellState::kUnknown) others_unknown = false;
+      }
+      if (!others_unknown) continue;
+      ++only_reference;
+      ASSERT_EQ(merged.at(cell), ref.at({i, j})) << "reference cell " << i << ", " << j;
+    }
+  }
+  std::printf(
+      "[ reference ] map %d: %lld known cells on the merged lattice, %lld known only to it "
+      "and kept as they are\n",
+      reference, static_cast<long long>(checked), static_cast<long long>(only_reference));
+  EXPECT_GT(only_reference, checked / 10);
+}
+
+TEST(FleetMerge, ReferenceMapComesOutCellForCell) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  std::mt19937 rng(11);
+  GroundTruthFleet fleet = CutFleet(LoadShared("intel_lab.yaml"), 4, rng);
+  for (const int reference : {1, 3}) {
+    const FleetResult result = MergeFleet(Pointers(fleet.maps), reference, FleetOptions{});
+    ASSERT_EQ(result.components.size(), 1u);
+    ExpectReferenceCellForCell(result, fleet.maps, reference);
+  }
+  // A coarser reference: the merged map is at its resolution, on its cells.
+  fleet.maps[3] =
+      ResampleToResolution(fleet.maps[3], 2.0 * fleet.maps[3].geometry().resolution_m());
+  const FleetResult coarse = MergeFleet(Pointers(fleet.maps), 3, FleetOptions{});
+  ASSERT_EQ(coarse.components.size(), 1u);
+  ExpectReferenceCellForCell(coarse, fleet.maps, 3);
 }
 
 TEST(FleetMerge, ResultDoesNotDependOnThreadCount) {
