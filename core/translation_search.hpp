@@ -9,8 +9,9 @@
 //   survive). Walls of b on walls of a score; a wall of either map laid across the other's open
 //   space (free pixels not next to a wall pixel) costs free_penalty. The penalty both ways is
 //   what lets a small true overlap beat a large wrong one: a raw wall count grows with the
-//   overlap, and wrong overlaps of one building are large (simulated fleets in GDC and MIT CSAIL
-//   put the true translation 30-120th at the old settings; see docs/accuracy.md, "Accuracy suite").
+//   overlap, and wrong overlaps of one building are large (in simulated fleets in GDC and MIT
+//   CSAIL a walls-only count put the true translation 30-120th; see docs/accuracy.md, "Accuracy
+//   suite").
 #pragma once
 
 #include <Eigen/Core>

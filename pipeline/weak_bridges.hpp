@@ -6,8 +6,8 @@
 // check. A map of another building built from the same modules (a second synthetic office, or a
 // floor that repeats another) matches one map of a fleet by chance often enough: on 288
 // simulated cases (146 with such a map), 11 wrong bridges passed the thresholds with omega
-// 0.92-0.98 over 5600-21700 cells, 8 of them with wall agreement 0.80-0.87 (with the search of
-// session 6, one more at 0.882), while every true bridge had >= 0.897 (docs/accuracy.md, "Lone
+// 0.92-0.98 over 5600-21700 cells, 8 of them with wall agreement 0.80-0.87 (with the current
+// pair search one more, at 0.882), while every true bridge had >= 0.897 (docs/accuracy.md, "Lone
 // links"). So a bridge needs walls between the two. Neither omega, the overlap, nor the share of
 // the smaller map it covers told them apart; wrong bridges at 0.90-0.96 remain possible.
 //
