@@ -1,4 +1,4 @@
-#include "io/occupancy_grid_msg.hpp"
+#include "rosbag/occupancy_grid_msg.hpp"
 
 #include <cfloat>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "io/byte_reader.hpp"
+#include "rosbag/byte_reader.hpp"
 
 namespace fleetmerge {
 namespace {

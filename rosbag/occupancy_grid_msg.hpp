@@ -12,7 +12,7 @@
 #include <string>
 #include <string_view>
 
-#include "io/map_io.hpp"
+#include "core/occupancy_grid.hpp"
 
 namespace fleetmerge {
 
