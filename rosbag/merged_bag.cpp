@@ -12,7 +12,7 @@ namespace fleetmerge {
 namespace {
 
 struct Topic {
-  std::string name, type;
+  std::string name, type, type_hash;
 };
 
 // RMW_DURATION_INFINITE as rosbag2 records it for publishers without a deadline or lifespan.
@@ -50,7 +50,7 @@ std::string BagInformation(const std::vector<Topic>& topics, std::int64_t stamp_
       << "      type: " << t.type << "\n"
       << "      serialization_format: cdr\n"
       << "      offered_qos_profiles:\n        " << LatchedQosYaml("        ")
-      << "      type_description_hash: \"\"\n"
+      << "      type_description_hash: " << t.type_hash << "\n"
       << "    message_count: 1\n";
   }
   y << "compression_format: \"\"\n"
@@ -93,8 +93,11 @@ MergedBagFiles MakeMergedBag(const std::vector<MergedBagMap>& maps,
                              std::int64_t stamp_ns) {
   std::set<std::string> seen = {"/tf_static"};
   McapWriter mcap("ros2", "fleetmerge");
-  const std::map<std::string, std::string> channel_metadata = {
-      {"offered_qos_profiles", LatchedQosYaml("")}, {"topic_type_hash", ""}};
+  // What rosbag2_storage_mcap stores per channel: the offered QoS (YAML) and the type hash.
+  const auto channel_metadata = [](const char* type_hash) {
+    return std::map<std::string, std::string>{{"offered_qos_profiles", LatchedQosYaml("")},
+                                              {"topic_type_hash", type_hash}};
+  };
   std::vector<Topic> topics;
   const auto time_ns = static_cast<std::uint64_t>(stamp_ns);
   if (!maps.empty()) {
@@ -102,18 +105,19 @@ MergedBagFiles MakeMergedBag(const std::vector<MergedBagMap>& maps,
         mcap.AddSchema("nav_msgs/msg/OccupancyGrid", "ros2msg", kOccupancyGridDefinition);
     for (const MergedBagMap& map : maps) {
       CheckTopic(map.topic, seen);
-      const std::uint16_t channel = mcap.AddChannel(schema, map.topic, "cdr", channel_metadata);
+      const std::uint16_t channel =
+          mcap.AddChannel(schema, map.topic, "cdr", channel_metadata(kOccupancyGridTypeHash));
       mcap.AddMessage(channel, time_ns, time_ns,
                       EncodeCdrOccupancyGrid(*map.grid, map.frame_id, stamp_ns));
-      topics.push_back({map.topic, "nav_msgs/msg/OccupancyGrid"});
+      topics.push_back({map.topic, "nav_msgs/msg/OccupancyGrid", kOccupancyGridTypeHash});
     }
   }
   const std::uint16_t tf_schema =
       mcap.AddSchema("tf2_msgs/msg/TFMessage", "ros2msg", kTfMessageDefinition);
   const std::uint16_t tf_channel =
-      mcap.AddChannel(tf_schema, "/tf_static", "cdr", channel_metadata);
+      mcap.AddChannel(tf_schema, "/tf_static", "cdr", channel_metadata(kTfMessageTypeHash));
   mcap.AddMessage(tf_channel, time_ns, time_ns, EncodeCdrTfMessage(transforms, stamp_ns));
-  topics.push_back({"/tf_static", "tf2_msgs/msg/TFMessage"});
+  topics.push_back({"/tf_static", "tf2_msgs/msg/TFMessage", kTfMessageTypeHash});
 
   const std::string information = BagInformation(topics, stamp_ns);
   mcap.AddMetadata("rosbag2", {{"serialized_metadata", information}});

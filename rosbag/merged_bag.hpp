@@ -6,9 +6,8 @@
 // Every topic is recorded as offered transient local, reliable, keep last 1 (map_server's and
 // static_transform_publisher's QoS), so that `ros2 bag play` offers it latched as they do: a node
 // that subscribes after the message was played still gets the map and the transforms.
-// Schemas are "ros2msg" (rosbag/message_definitions.hpp), messages "cdr". type_description_hash
-// is left empty (as rosbag2 writes for types it has no hash of): fleetmerge has no ROS type
-// support to compute it from, and playback does not check it.
+// Schemas are "ros2msg" (rosbag/message_definitions.hpp, with the types' RIHS01 hashes as
+// type_description_hash), messages "cdr".
 #pragma once
 
 #include <cstdint>

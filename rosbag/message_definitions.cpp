@@ -62,4 +62,9 @@ const char* const kTfMessageDefinition =
 
 #undef FLEETMERGE_MSG_SEPARATOR
 
+const char* const kOccupancyGridTypeHash =
+    "RIHS01_8d348150c12913a31ee0ec170fbf25089e4745d17035792a1ba94d6f0bc0cfc7";
+const char* const kTfMessageTypeHash =
+    "RIHS01_e369d0f05a23ae52508854b66f6aa0437f3449d652e8cbf22d5abe85d020f087";
+
 }  // namespace fleetmerge

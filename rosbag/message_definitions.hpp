@@ -10,4 +10,11 @@ namespace fleetmerge {
 extern const char* const kOccupancyGridDefinition;  // nav_msgs/msg/OccupancyGrid
 extern const char* const kTfMessageDefinition;      // tf2_msgs/msg/TFMessage
 
+// Their type hashes (REP 2011, "RIHS01_" + SHA-256 of the type description: the type and each
+// type it uses, sorted by name, as JSON without default values), as rosidl generates them for
+// Jazzy; rosbag2 records them as type_description_hash. tests/rosbag/merged_bag_check.mjs
+// recomputes them from the definitions above.
+extern const char* const kOccupancyGridTypeHash;
+extern const char* const kTfMessageTypeHash;
+
 }  // namespace fleetmerge

@@ -1,5 +1,6 @@
 // Checks a result set's merged_bag/ (rosbag/merged_bag.hpp) with readers fleetmerge did not
-// write: npm's @mcap/core (the MCAP reference reader, indexed and streaming), @foxglove/rosmsg
+// write: npm's @mcap/core (the MCAP reference reader, indexed and streaming; @foxglove/crc for
+// the data section CRC, which the readers do not check), @foxglove/rosmsg
 // (ROS 2 .msg definitions) and @foxglove/rosmsg2-serialization (CDR), and `yaml` for
 // metadata.yaml. The expected values come from the other files of the set, read here on their
 // own: merged_<c>.yaml + merged_<c>.pgm (map_server semantics) and report.json (frames, poses).
@@ -8,9 +9,11 @@
 //
 // Prints "merged_bag_check: OK ..." and exits 0, or prints what differs and exits 1.
 import { McapIndexedReader, McapStreamReader } from "@mcap/core";
+import { crc32 } from "@foxglove/crc";
 import { parse as parseMsg } from "@foxglove/rosmsg";
 import { MessageReader } from "@foxglove/rosmsg2-serialization";
 import YAML from "yaml";
+import { createHash } from "node:crypto";
 import fs from "node:fs";
 import path from "node:path";
 
@@ -56,6 +59,48 @@ function readMergedMap(yamlPath) {
 const yawOf = (q) => Math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z));
 const angleDiff = (a, b) => Math.abs(Math.atan2(Math.sin(a - b), Math.cos(a - b)));
 
+// REP 2011's RIHS01 type hash of a schema, computed from its definition text as rosidl computes
+// it: the type and every type it uses (sorted by name), each field's type id, capacity, string
+// capacity and nested type name (no default values, no constants), as JSON with Python's
+// separators, hashed with SHA-256.
+const kTypeIds = { int8: 2, uint8: 3, int16: 4, uint16: 5, int32: 6, uint32: 7, int64: 8,
+  uint64: 9, float32: 10, float64: 11, char: 13, bool: 15, byte: 16, string: 17, wstring: 18 };
+function rihs01(schemaName, definitions) {
+  const full = (type) => (type.includes("/msg/") ? type : type.replace("/", "/msg/"));
+  const byName = new Map(definitions.map((d, k) => [k === 0 ? schemaName : full(d.name), d]));
+  const fieldJson = (f) => {
+    let nested = "";
+    if (f.type === "time") nested = "builtin_interfaces/msg/Time";  // @foxglove/rosmsg's names
+    else if (f.type === "duration") nested = "builtin_interfaces/msg/Duration";
+    else if (f.isComplex) nested = full(f.type);
+    let id = nested ? 1 : kTypeIds[f.type];
+    if (id === undefined) throw new Error(`${schemaName}: no type id for ${f.type}`);
+    let capacity = 0;
+    if (f.isArray && f.arrayLength !== undefined) [id, capacity] = [id + 48, f.arrayLength];
+    else if (f.isArray && f.arrayUpperBound !== undefined) [id, capacity] = [id + 96, f.arrayUpperBound];
+    else if (f.isArray) id += 144;
+    return `{"name": ${JSON.stringify(f.name)}, "type": {"type_id": ${id}, "capacity": ${capacity}, ` +
+           `"string_capacity": ${f.upperBound ?? 0}, "nested_type_name": ${JSON.stringify(nested)}}}`;
+  };
+  const used = new Set();
+  const nestedOf = (name) => byName.get(name).definitions.filter((f) => !f.isConstant).map((f) =>
+    f.type === "time" ? "builtin_interfaces/msg/Time" : f.type === "duration" ?
+      "builtin_interfaces/msg/Duration" : f.isComplex ? full(f.type) : null).filter(Boolean);
+  const walk = (name) => nestedOf(name).forEach((n) => !used.has(n) && (used.add(n), walk(n)));
+  walk(schemaName);
+  const describe = (name) => `{"type_name": ${JSON.stringify(name)}, "fields": [` +
+    byName.get(name).definitions.filter((f) => !f.isConstant).map(fieldJson).join(", ") + "]}";
+  const json = `{"type_description": ${describe(schemaName)}, "referenced_type_descriptions": [` +
+    [...used].sort().map(describe).join(", ") + "]}";
+  return "RIHS01_" + createHash("sha256").update(json).digest("hex");
+}
+// The hashes rosidl generates for these types (as in every ROS 2 Jazzy build's generated
+// <type>__description.c): the schema text must describe the real types.
+const kRosidlHashes = {
+  "nav_msgs/msg/OccupancyGrid": "RIHS01_8d348150c12913a31ee0ec170fbf25089e4745d17035792a1ba94d6f0bc0cfc7",
+  "tf2_msgs/msg/TFMessage": "RIHS01_e369d0f05a23ae52508854b66f6aa0437f3449d652e8cbf22d5abe85d020f087",
+};
+
 function checkQos(profiles, where) {
   check(Array.isArray(profiles) && profiles.length === 1, `${where}: one offered QoS profile`);
   const q = profiles[0] ?? {};
@@ -84,6 +129,9 @@ const readable = {
 };
 const indexed = await McapIndexedReader.Initialize({ readable });
 check(indexed.header.profile === "ros2", "MCAP profile ros2");
+// DataEnd's CRC covers everything before it, magic and Header included (as @mcap/core writes it).
+check(indexed.dataSectionCrc === crc32(bytes.subarray(0, Number(indexed.dataEndOffset))),
+      "DataEnd's data section CRC");
 const messages = [];
 for await (const m of indexed.readMessages({ validateCrcs: true })) messages.push(m);
 // The same file through the streaming reader (record by record, CRCs checked).
@@ -107,7 +155,12 @@ for (const t of info.topics_with_message_count) {
   check(meta.serialization_format === "cdr", `${meta.name}: serialization_format cdr`);
   checkQos(meta.offered_qos_profiles, `${meta.name} metadata.yaml`);
   checkQos(YAML.parse(channel.metadata.get("offered_qos_profiles")), `${meta.name} channel`);
-  const reader = new MessageReader(parseMsg(new TextDecoder().decode(schema.data), { ros2: true }));
+  const definitions = parseMsg(new TextDecoder().decode(schema.data), { ros2: true });
+  const hash = rihs01(schema.name, definitions);
+  check(hash === kRosidlHashes[schema.name], `${meta.name}: schema hashes to ${hash}, rosidl's is ${kRosidlHashes[schema.name]}`);
+  check(meta.type_description_hash === hash, `${meta.name}: type_description_hash ${meta.type_description_hash}, schema ${hash}`);
+  check(channel.metadata.get("topic_type_hash") === hash, `${meta.name}: channel topic_type_hash`);
+  const reader = new MessageReader(definitions);
   const mine = messages.filter((m) => m.channelId === channel.id);
   check(mine.length === t.message_count, `${meta.name}: ${mine.length} messages, metadata says ${t.message_count}`);
   for (const m of mine) {
