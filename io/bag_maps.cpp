@@ -4,9 +4,9 @@
 #include <optional>
 
 #include "core/error.hpp"
-#include "io/occupancy_grid_msg.hpp"
-#include "io/ros1_bag.hpp"
-#include "io/ros2_bag.hpp"
+#include "rosbag/occupancy_grid_msg.hpp"
+#include "rosbag/ros1_bag.hpp"
+#include "rosbag/ros2_bag.hpp"
 
 namespace fleetmerge {
 namespace fs = std::filesystem;

@@ -1,6 +1,6 @@
 // Maps recorded in robot bags: every nav_msgs/OccupancyGrid topic of a ROS 1 bag
-// (io/ros1_bag.hpp) or a ROS 2 bag (io/ros2_bag.hpp) gives one map, its LAST message (the latest
-// receive time: the map the robot had at the end of its mission).
+// (rosbag/ros1_bag.hpp) or a ROS 2 bag (rosbag/ros2_bag.hpp) gives one map, its LAST message (the
+// latest receive time: the map the robot had at the end of its mission).
 #pragma once
 
 #include <cstdint>
@@ -22,7 +22,7 @@ bool IsBagPath(const std::filesystem::path& path);
 std::vector<std::string> BagMapTopics(const std::filesystem::path& bag,
                                       const std::vector<std::string>& wanted = {});
 
-// The last OccupancyGrid on `topic` as a map (io/occupancy_grid_msg.hpp): metadata.yaml_path is
+// The last OccupancyGrid on `topic` as a map (rosbag/occupancy_grid_msg.hpp): metadata.yaml_path is
 // the bag, metadata.image_path empty, and `bag` says where it came from. Throws
 // fleetmerge::Error naming the bag and topic and what was wrong.
 LoadedMap LoadBagMap(const std::filesystem::path& bag, const std::string& topic,

@@ -88,6 +88,23 @@ void RecoverLeftovers(const fs::path& output_dir) {
   }
 }
 
+// The files under `folder` by their paths relative to it ("merged_bag/metadata.yaml"), as the
+// manifest names them; a folder holding nothing is listed as "<path>/" (a result set never has
+// one, so it is not ours either).
+std::set<std::string> PresentFiles(const fs::path& folder) {
+  std::set<std::string> present;
+  for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+    const std::string relative = entry.path().lexically_relative(folder).generic_string();
+    std::error_code ec;
+    if (!entry.is_directory(ec) || entry.is_symlink(ec)) {
+      present.insert(relative);
+    } else if (fs::is_empty(entry.path(), ec)) {
+      present.insert(relative + "/");
+    }
+  }
+  return present;
+}
+
 // Throws unless the existing `output_dir` may be replaced by a result set of `job_id`.
 void CheckReplaceable(const fs::path& output_dir, const std::string& job_id, bool force,
                       const std::vector<fs::path>& inputs) {
@@ -98,10 +115,7 @@ void CheckReplaceable(const fs::path& output_dir, const std::string& job_id, boo
                   "choose another output folder");
     }
   }
-  std::set<std::string> present;
-  for (const auto& entry : fs::directory_iterator(output_dir)) {
-    present.insert(entry.path().filename().string());
-  }
+  std::set<std::string> present = PresentFiles(output_dir);
   if (present.empty()) return;
   const std::string refuse = "refusing to replace output folder " + output_dir.string() + ": ";
   if (present.count(kManifestName) == 0) {

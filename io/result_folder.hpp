@@ -13,7 +13,8 @@
 // A folder fleetmerge wrote holds a manifest, `.fleetmerge-job`: the identity of the job that
 // wrote it and the files it wrote. An existing output folder is replaced only when
 //   - it holds no file the manifest does not list (files fleetmerge did not write are never lost;
-//     an empty folder counts as ours),
+//     an empty folder counts as ours; files in subfolders, such as merged_bag/metadata.yaml,
+//     are listed by their relative paths),
 //   - it holds none of the job's inputs (neither map files nor the job file), and
 //   - its manifest names the same job, or `force` is set.
 #pragma once
@@ -28,7 +29,7 @@ inline constexpr const char* kManifestName = ".fleetmerge-job";
 
 struct ResultManifest {
   std::string job_id;
-  std::vector<std::string> files;  // names inside the folder, the manifest excluded
+  std::vector<std::string> files;  // paths inside the folder ('/'-separated), the manifest excluded
 };
 
 // Reads `folder`/.fleetmerge-job. Throws fleetmerge::Error naming the file when it is missing or

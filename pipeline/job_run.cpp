@@ -15,6 +15,7 @@
 #include "pipeline/launch_files.hpp"
 #include "pipeline/preview.hpp"
 #include "pipeline/report_json.hpp"
+#include "rosbag/merged_bag.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -48,6 +49,40 @@ std::vector<std::string> WriteOutputs(const std::filesystem::path& dir, const Fl
     written.insert(written.end(), {files[c], stem + ".pgm", stem + "_preview.png"});
   }
   return files;
+}
+
+// merged_bag/ (rosbag/merged_bag.hpp): component 0's merged map on /map and component c's on
+// /merged_<c>/map, each in its component's frame (the launch files' parent frame), and
+// /tf_static with the launch files' transforms. A job with nothing merged gets a bag with
+// /tf_static only (an empty TFMessage), so that every result set has the same files. Appends
+// the files written to `written`.
+void WriteMergedBag(const std::filesystem::path& dir, const Job& job, const FleetResult& result,
+                    const std::vector<std::filesystem::path>& protect,
+                    std::vector<std::string>& written) {
+  std::vector<MergedBagMap> maps;
+  for (std::size_t c = 0; c < result.components.size(); ++c) {
+    if (!result.components[c].merged) continue;
+    maps.push_back({c == 0 ? "/map" : "/merged_" + std::to_string(c) + "/map",
+                    ParentFrame(job, static_cast<int>(c)), &*result.components[c].merged});
+  }
+  std::vector<std::string> unmerged;
+  std::vector<StaticTransform> transforms;
+  for (const MapTransform& t : MapTransforms(job, result, unmerged)) {
+    transforms.push_back({t.parent_frame, t.child_frame, t.T_parent_child});
+  }
+  const std::int64_t stamp_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                    std::chrono::system_clock::now().time_since_epoch())
+                                    .count();
+  const MergedBagFiles bag = MakeMergedBag(maps, transforms, stamp_ns);
+  const std::filesystem::path folder = dir / kMergedBagFolder;
+  std::error_code ec;
+  std::filesystem::create_directory(folder, ec);
+  if (ec) throw Error(folder.string() + ": cannot create the folder: " + ec.message());
+  // The storage file first: no reader sees a metadata.yaml naming a missing file.
+  WriteFileAtomically(folder / kMergedBagMcapName, bag.mcap, protect);
+  WriteFileAtomically(folder / kMergedBagMetadataName, bag.metadata_yaml, protect);
+  const std::string prefix = std::string(kMergedBagFolder) + "/";
+  written.insert(written.end(), {prefix + kMergedBagMcapName, prefix + kMergedBagMetadataName});
 }
 
 }  // namespace
@@ -184,6 +219,7 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     WriteFileAtomically(folder->staging_dir() / kRos1LaunchFile, Ros1TransformsLaunch(job, result),
                         protect);
     written.insert(written.end(), {kRos2LaunchFile, kRos1LaunchFile});
+    WriteMergedBag(folder->staging_dir(), job, result, protect, written);
     folder->Publish(written);
   }
   return outcome;

@@ -21,15 +21,11 @@ std::string NodeName(const std::string& map_name) {
   return out;
 }
 
-struct Transform {
-  std::string name, parent, child;
-  Pose2 T_parent_child;
-};
+}  // namespace
 
-// Every merged map's transform, and a comment line per unmerged map.
-std::vector<Transform> Transforms(const Job& job, const FleetResult& result,
-                                  std::vector<std::string>& unmerged) {
-  std::vector<Transform> out;
+std::vector<MapTransform> MapTransforms(const Job& job, const FleetResult& result,
+                                        std::vector<std::string>& unmerged) {
+  std::vector<MapTransform> out;
   for (std::size_t c = 0; c < result.components.size(); ++c) {
     const FleetComponent& component = result.components[c];
     for (int m : component.maps) {
@@ -43,8 +39,6 @@ std::vector<Transform> Transforms(const Job& job, const FleetResult& result,
   }
   return out;
 }
-
-}  // namespace
 
 std::string ChildFrame(const Job& job, const std::string& map_name) {
   std::string frame = job.tf_child_frame;
@@ -82,7 +76,7 @@ void CheckTransformFrames(const Job& job) {
 
 std::string Ros2TransformsLaunch(const Job& job, const FleetResult& result) {
   std::vector<std::string> unmerged;
-  const std::vector<Transform> transforms = Transforms(job, result, unmerged);
+  const std::vector<MapTransform> transforms = MapTransforms(job, result, unmerged);
   std::string out =
       "# fleetmerge: static transforms from the merged map frame to each robot's map frame\n"
       "# (job '" +
@@ -90,13 +84,14 @@ std::string Ros2TransformsLaunch(const Job& job, const FleetResult& result) {
       "\n# Serve merged_<c>.yaml with nav2_map_server in the parent frame (frame_id).\n";
   for (const auto& name : unmerged) out += "# map '" + name + "' was not merged: no transform\n";
   out += "launch:\n";
-  for (const Transform& t : transforms) {
+  for (const MapTransform& t : transforms) {
     out +=
         "  - node:\n      pkg: tf2_ros\n      exec: static_transform_publisher\n"
         "      name: " +
-        NodeName(t.name) + "\n      args: \"--x " + Number(t.T_parent_child.x_m()) + " --y " +
+        NodeName(t.map_name) + "\n      args: \"--x " + Number(t.T_parent_child.x_m()) + " --y " +
         Number(t.T_parent_child.y_m()) + " --z 0 --yaw " + Number(t.T_parent_child.yaw_rad()) +
-        " --pitch 0 --roll 0 --frame-id " + t.parent + " --child-frame-id " + t.child + "\"\n";
+        " --pitch 0 --roll 0 --frame-id " + t.parent_frame + " --child-frame-id " + t.child_frame +
+        "\"\n";
   }
   if (transforms.empty()) out += "  []\n";
   return out;
@@ -110,7 +105,7 @@ std::string XmlCommentText(std::string text) {
 
 std::string Ros1TransformsLaunch(const Job& job, const FleetResult& result) {
   std::vector<std::string> unmerged;
-  const std::vector<Transform> transforms = Transforms(job, result, unmerged);
+  const std::vector<MapTransform> transforms = MapTransforms(job, result, unmerged);
   std::string out =
       "<?xml version=\"1.0\"?>\n<!-- fleetmerge: static transforms from the merged map frame "
       "to each robot's map frame (job '" +
@@ -119,12 +114,12 @@ std::string Ros1TransformsLaunch(const Job& job, const FleetResult& result) {
   for (const auto& name : unmerged)
     out += "<!-- map '" + XmlCommentText(name) + "' was not merged: no transform -->\n";
   out += "<launch>\n";
-  for (const Transform& t : transforms) {
+  for (const MapTransform& t : transforms) {
     // tf2_ros static_transform_publisher: x y z yaw pitch roll frame_id child_frame_id
     out += "  <node pkg=\"tf2_ros\" type=\"static_transform_publisher\" name=\"" +
-           NodeName(t.name) + "\" args=\"" + Number(t.T_parent_child.x_m()) + " " +
+           NodeName(t.map_name) + "\" args=\"" + Number(t.T_parent_child.x_m()) + " " +
            Number(t.T_parent_child.y_m()) + " 0 " + Number(t.T_parent_child.yaw_rad()) + " 0 0 " +
-           t.parent + " " + t.child + "\"/>\n";
+           t.parent_frame + " " + t.child_frame + "\"/>\n";
   }
   out += "</launch>\n";
   return out;

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "job/job.hpp"
 #include "pipeline/fleet_merge.hpp"
@@ -21,6 +22,18 @@ inline constexpr const char* kRos1LaunchFile = "transforms.launch";
 
 std::string Ros2TransformsLaunch(const Job& job, const FleetResult& result);
 std::string Ros1TransformsLaunch(const Job& job, const FleetResult& result);
+
+// One merged map's static transform: from its component's frame to the map's frame.
+struct MapTransform {
+  std::string map_name, parent_frame, child_frame;
+  Pose2 T_parent_child;
+};
+
+// Every merged map's transform, in job order within each component (the order the launch files
+// list them; the result set's merged_bag/ publishes the same ones on /tf_static). The names of
+// maps left unmerged go to `unmerged`.
+std::vector<MapTransform> MapTransforms(const Job& job, const FleetResult& result,
+                                        std::vector<std::string>& unmerged);
 
 // The child frame of a map ("{name}" replaced) and the parent frame of a component.
 std::string ChildFrame(const Job& job, const std::string& map_name);

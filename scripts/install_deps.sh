@@ -18,7 +18,23 @@ packages=(
   # tests/browser: report.html opened in headless Chromium, driven by a Node script (no npm
   # package); a font so that the page's text renders in its screenshots.
   chromium nodejs fonts-dejavu-core
+  python3-roslaunch  # tests/rosbag: transforms.launch loaded by ROS 1's own roslaunch
 )
+
+# tests/rosbag: the npm packages (package-lock.json) that read the result set's merged_bag/.
+# npm comes with Debian's nodejs as its own package, or with nodejs from elsewhere (which then
+# conflicts with Debian's npm): installed only when missing.
+install_npm_packages() {
+  local here sudo=""
+  here="$(cd "$(dirname "${BASH_SOURCE[0]}")/../tests/rosbag" && pwd)"
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  command -v npm >/dev/null || $sudo apt-get install -y -qq --no-install-recommends npm
+  if [ ! -f "$here/node_modules/.package-lock.json" ] ||
+    [ "$here/package-lock.json" -nt "$here/node_modules/.package-lock.json" ]; then
+    echo "install_deps: npm ci in tests/rosbag"
+    (cd "$here" && npm ci --no-audit --no-fund --loglevel=error)
+  fi
+}
 
 missing=()
 for p in "${packages[@]}"; do
@@ -26,6 +42,7 @@ for p in "${packages[@]}"; do
 done
 if [ ${#missing[@]} -eq 0 ]; then
   echo "install_deps: all ${#packages[@]} packages already installed"
+  install_npm_packages
   exit 0
 fi
 
@@ -35,3 +52,4 @@ echo "install_deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+install_npm_packages

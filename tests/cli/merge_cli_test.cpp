@@ -309,9 +309,9 @@ TEST_F(MergeCliTest, MapOfAnotherBuildingStaysUnmerged) {
     }
   }
   const std::set<std::string> expected = {
-      ".fleetmerge-job",      "report.json",       "merged_0.yaml",         "merged_0.pgm",
+      ".fleetmerge-job",      "report.json",       "merged_0.yaml",          "merged_0.pgm",
       "merged_0_preview.png", "transforms.launch", "transforms.launch.yaml", "report.html",
-      "report_map_0.png",     "report_map_1.png",  "report_map_2.png"};
+      "report_map_0.png",     "report_map_1.png",  "report_map_2.png",       "merged_bag"};
   EXPECT_EQ(FilesIn(out), expected) << "no merged map for the unmerged component";
 }
 

@@ -53,11 +53,12 @@ int Wait(pid_t pid) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
 }
 
-// The folder's files and their bytes.
+// The folder's files (subfolders' too: merged_bag/metadata.yaml) and their bytes.
 std::map<std::string, std::string> Snapshot(const fs::path& folder) {
   std::map<std::string, std::string> files;
-  for (const auto& entry : fs::directory_iterator(folder)) {
-    files[entry.path().filename().string()] = ReadFile(entry.path());
+  for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+    if (entry.is_directory()) continue;
+    files[entry.path().lexically_relative(folder).generic_string()] = ReadFile(entry.path());
   }
   return files;
 }
@@ -72,7 +73,7 @@ void ExpectCompleteSet(const fs::path& out, const std::string& when) {
   EXPECT_EQ(expected.count("report.html"), 1u) << "the page is part of every set";
   expected.insert(kManifestName);
   std::set<std::string> present;
-  for (const auto& e : fs::directory_iterator(out)) present.insert(e.path().filename().string());
+  for (const auto& [file, bytes] : Snapshot(out)) present.insert(file);
   EXPECT_EQ(present, expected);
   nlohmann::json report;
   ASSERT_NO_THROW(report = nlohmann::json::parse(ReadFile(out / "report.json")));

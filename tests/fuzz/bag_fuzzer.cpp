@@ -1,7 +1,7 @@
-// Fuzzes the bag readers: every input is written as robot.bag (io/ros1_bag), robot.mcap
-// (io/mcap_file) and robot.db3 (io/sqlite_bag) and each is loaded as `merge --out` loads a bag
-// (every map topic, io/map_inputs.hpp); the input is also decoded as one ROS 1 and one CDR
-// nav_msgs/OccupancyGrid message (io/occupancy_grid_msg). A loaded map must have the size its
+// Fuzzes the bag readers: every input is written as robot.bag (rosbag/ros1_bag), robot.mcap
+// (rosbag/mcap_file) and robot.db3 (rosbag/sqlite_bag) and each is loaded as `merge --out` loads a
+// bag (every map topic, io/map_inputs.hpp); the input is also decoded as one ROS 1 and one CDR
+// nav_msgs/OccupancyGrid message (rosbag/occupancy_grid_msg). A loaded map must have the size its
 // message announced. Anything but a clean load or a fleetmerge::Error (a crash, a sanitizer
 // report, another exception, a hang) is a finding.
 #include <cstdlib>
@@ -9,7 +9,7 @@
 
 #include "core/error.hpp"
 #include "io/map_inputs.hpp"
-#include "io/occupancy_grid_msg.hpp"
+#include "rosbag/occupancy_grid_msg.hpp"
 #include "tests/fuzz/fuzz_support.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

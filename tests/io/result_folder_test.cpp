@@ -57,6 +57,35 @@ TEST(ResultFolder, NewFolderThenReplacedBySameJob) {
   EXPECT_EQ(Entries(dir / "sub"), std::vector<std::string>{"out"}) << "no staging left";
 }
 
+// A set with a subfolder (merged_bag/): the manifest lists its files by relative path, the set
+// is replaced as a whole, and a file the user put inside the subfolder stops the replacement.
+TEST(ResultFolder, SubfolderFilesAreListedAndGuarded) {
+  const fs::path out = ft::MakeTempDir("result_folder_subfolder") / "out";
+  const auto publish = [&](const std::string& text) {
+    ResultFolder folder(out, "job A", false, {});
+    fs::create_directory(folder.staging_dir() / "merged_bag");
+    ft::WriteFile(folder.staging_dir() / "merged_bag" / "metadata.yaml", text);
+    ft::WriteFile(folder.staging_dir() / "report.json", text);
+    folder.Publish({"merged_bag/metadata.yaml", "report.json"});
+  };
+  publish("first");
+  EXPECT_EQ(ReadResultManifest(out).files,
+            (std::vector<std::string>{"merged_bag/metadata.yaml", "report.json"}));
+  publish("second");
+  EXPECT_EQ(ft::ReadFile(out / "merged_bag" / "metadata.yaml"), "second");
+  ft::WriteFile(out / "merged_bag" / "notes.txt", "mine");
+  const std::string message = ErrorOf([&] { publish("third"); });
+  EXPECT_NE(message.find("did not write (e.g. 'merged_bag/notes.txt')"), std::string::npos)
+      << message;
+  EXPECT_EQ(ft::ReadFile(out / "merged_bag" / "notes.txt"), "mine");
+  fs::remove(out / "merged_bag" / "notes.txt");
+  fs::create_directory(out / "merged_bag" / "empty");
+  EXPECT_NE(ErrorOf([&] { publish("fourth"); }).find("'merged_bag/empty/'"), std::string::npos);
+  fs::remove(out / "merged_bag" / "empty");
+  publish("fifth");
+  EXPECT_EQ(ft::ReadFile(out / "report.json"), "fifth");
+}
+
 TEST(ResultFolder, AnotherJobNeedsForce) {
   const fs::path out = ft::MakeTempDir("result_folder_force") / "out";
   PublishSet(out, "job A", "report.json", "A");

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "io/bag_types.hpp"
+#include "rosbag/bag_types.hpp"
 
 namespace fleetmerge {
 

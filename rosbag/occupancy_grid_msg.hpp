@@ -1,5 +1,6 @@
 // nav_msgs/OccupancyGrid as recorded in bags (ROS 1 and ROS 2 carry the same fields), decoded
-// from its wire form, and its conversion to the grid fleetmerge merges.
+// from its wire form, and its conversion to the grid fleetmerge merges; and the inverse, a grid
+// encoded as a ROS 2 message (for the result set's merged_bag/, rosbag/merged_bag.hpp).
 //
 // Conversion follows map_saver's defaults, so that a map read from a bag is the map a user gets
 // by `map_saver` then loading the YAML: a cell value v (occupancy percent) is free when
@@ -12,7 +13,7 @@
 #include <string>
 #include <string_view>
 
-#include "io/map_io.hpp"
+#include "core/occupancy_grid.hpp"
 
 namespace fleetmerge {
 
@@ -38,5 +39,12 @@ OccupancyGridMsg DecodeCdrOccupancyGrid(std::string_view bytes, const std::strin
 // with `context` saying what was wrong.
 OccupancyGrid OccupancyGridFromMsg(const OccupancyGridMsg& msg, const std::string& context,
                                    std::int64_t max_cells);
+
+// The grid as a ROS 2 CDR nav_msgs/msg/OccupancyGrid, as map_server publishes a map: free 0,
+// occupied 100, unknown -1, row-major from the bottom row (no flip, as in core/); info.origin
+// the grid's T_map_grid with its yaw as a quaternion about z; header.stamp and
+// info.map_load_time `stamp_ns`. OccupancyGridFromMsg of its decoding gives the grid back.
+std::string EncodeCdrOccupancyGrid(const OccupancyGrid& grid, const std::string& frame_id,
+                                   std::int64_t stamp_ns);
 
 }  // namespace fleetmerge

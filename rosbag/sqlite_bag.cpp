@@ -1,4 +1,4 @@
-#include "io/sqlite_bag.hpp"
+#include "rosbag/sqlite_bag.hpp"
 
 #include <sqlite3.h>
 

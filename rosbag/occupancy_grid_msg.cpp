@@ -1,4 +1,4 @@
-#include "io/occupancy_grid_msg.hpp"
+#include "rosbag/occupancy_grid_msg.hpp"
 
 #include <cfloat>
 #include <cmath>
@@ -7,7 +7,9 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "io/byte_reader.hpp"
+#include "rosbag/byte_reader.hpp"
+#include "rosbag/byte_writer.hpp"
+#include "rosbag/ros_time.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -163,6 +165,45 @@ OccupancyGrid OccupancyGridFromMsg(const OccupancyGridMsg& msg, const std::strin
         static_cast<std::uint8_t>(s);
   }
   return OccupancyGrid(geometry, states);
+}
+
+std::string EncodeCdrOccupancyGrid(const OccupancyGrid& grid, const std::string& frame_id,
+                                   std::int64_t stamp_ns) {
+  const RosTime stamp = RosTimeOf(stamp_ns);
+  const GridGeometry& geometry = grid.geometry();
+  const Pose2& origin = geometry.T_map_grid();
+  CdrWriter w;
+  w.Put(stamp.sec);  // header
+  w.Put(stamp.nanosec);
+  w.String(frame_id);
+  w.Put(stamp.sec);  // info.map_load_time
+  w.Put(stamp.nanosec);
+  w.Put(static_cast<float>(geometry.resolution_m()));
+  w.Put(static_cast<std::uint32_t>(grid.width()));
+  w.Put(static_cast<std::uint32_t>(grid.height()));
+  const double half_yaw = 0.5 * origin.yaw_rad();
+  for (double v : {origin.x_m(), origin.y_m(), 0.0,                      // position
+                   0.0, 0.0, std::sin(half_yaw), std::cos(half_yaw)}) {  // orientation x y z w
+    w.Put(v);
+  }
+  std::string data(static_cast<std::size_t>(grid.width()) * grid.height(), '\0');
+  std::size_t k = 0;
+  for (int j = 0; j < grid.height(); ++j) {
+    for (int i = 0; i < grid.width(); ++i, ++k) {
+      switch (static_cast<CellState>(grid.cells()(j, i))) {
+        case CellState::kFree:
+          data[k] = 0;
+          break;
+        case CellState::kOccupied:
+          data[k] = 100;
+          break;
+        default:
+          data[k] = static_cast<char>(-1);
+      }
+    }
+  }
+  w.ByteSequence(data);
+  return w.bytes();
 }
 
 }  // namespace fleetmerge

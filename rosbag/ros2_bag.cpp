@@ -1,12 +1,15 @@
-#include "io/ros2_bag.hpp"
+#include "rosbag/ros2_bag.hpp"
 
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
 #include <map>
+#include <sstream>
 
 #include "core/error.hpp"
-#include "io/decompress.hpp"
-#include "io/mcap_file.hpp"
-#include "io/sqlite_bag.hpp"
-#include "io/yaml_errors.hpp"
+#include "rosbag/decompress.hpp"
+#include "rosbag/mcap_file.hpp"
+#include "rosbag/sqlite_bag.hpp"
 
 namespace fleetmerge {
 namespace fs = std::filesystem;
@@ -14,6 +17,43 @@ namespace {
 
 bool IsStorageFile(const fs::path& path) {
   return path.extension() == ".db3" || path.extension() == ".mcap";
+}
+
+// metadata.yaml errors in the house format of io/yaml_errors.hpp ("<file>: line L: key 'k':
+// what"), formatted here because rosbag/ sits below io/ (io/bag_maps.cpp reads maps from bags).
+class MetadataErrors {
+ public:
+  explicit MetadataErrors(const fs::path& path) : path_(path.string()) {}
+  [[noreturn]] void Fail(const std::string& what) const { throw Error(path_ + ": " + what); }
+  [[noreturn]] void Fail(const std::string& key, int line, const std::string& what) const {
+    Fail("line " + std::to_string(line) + ": key '" + key + "': " + what);
+  }
+
+ private:
+  std::string path_;
+};
+
+// rosbag2 writes a few kilobytes; anything this large is the wrong file.
+constexpr std::uintmax_t kMaxMetadataBytes = 16u << 20;
+
+YAML::Node ReadMetadata(const fs::path& path, const MetadataErrors& errors) {
+  std::error_code ec;
+  const std::uintmax_t bytes = fs::file_size(path, ec);
+  if (!ec && bytes > kMaxMetadataBytes) {
+    errors.Fail("is " + std::to_string(bytes) + " bytes, too large for a ROS 2 bag metadata " +
+                "file (at most " + std::to_string(kMaxMetadataBytes) + "): is it the right file?");
+  }
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in) errors.Fail("cannot read ROS 2 bag metadata");
+  try {
+    return YAML::Load(text.str());
+  } catch (const YAML::Exception& e) {
+    if (e.mark.is_null()) errors.Fail("malformed YAML: " + e.msg);
+    errors.Fail("line " + std::to_string(e.mark.line + 1) + ", column " +
+                std::to_string(e.mark.column + 1) + ": malformed YAML: " + e.msg);
+  }
 }
 
 std::string ScalarOr(const YAML::Node& node, const std::string& fallback) {
@@ -36,9 +76,8 @@ Ros2Bag ReadFolder(const fs::path& folder) {
         "beside .db3 or .mcap files)" +
         (found.empty() ? std::string() : "; it holds " + found + ": give that file instead"));
   }
-  const YamlErrors errors(metadata);
-  const YAML::Node root =
-      ParseYamlText(ReadYamlFileText(metadata, "ROS 2 bag metadata", errors), errors);
+  const MetadataErrors errors(metadata);
+  const YAML::Node root = ReadMetadata(metadata, errors);
   const YAML::Node info = root.IsMap() ? root["rosbag2_bagfile_information"] : YAML::Node();
   if (!info || !info.IsMap()) {
     errors.Fail("expected a mapping 'rosbag2_bagfile_information' (rosbag2's metadata.yaml)");

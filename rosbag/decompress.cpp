@@ -1,4 +1,4 @@
-#include "io/decompress.hpp"
+#include "rosbag/decompress.hpp"
 
 #include <bzlib.h>
 #include <lz4frame.h>

@@ -1,4 +1,4 @@
-// What the bag readers (io/ros1_bag.hpp, io/ros2_bag.hpp) report: a bag's topics and one
+// What the bag readers (rosbag/ros1_bag.hpp, rosbag/ros2_bag.hpp) report: a bag's topics and one
 // message's serialized bytes.
 #pragma once
 

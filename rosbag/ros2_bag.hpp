@@ -1,5 +1,5 @@
 // ROS 2 bags: a folder holding metadata.yaml (rosbag2_bagfile_information) and its storage files
-// (.db3: io/sqlite_bag.hpp, .mcap: io/mcap_file.hpp), or one storage file given alone. Read
+// (.db3: rosbag/sqlite_bag.hpp, .mcap: rosbag/mcap_file.hpp), or one storage file given alone. Read
 // metadata keys: version (Humble writes 5, Jazzy 9), storage_identifier, relative_file_paths,
 // compression_format/_mode; the QoS profiles (a YAML string in Humble, a list in Jazzy) and
 // type hashes are not needed to read maps and are not parsed. Compression: mode MESSAGE with
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "io/bag_types.hpp"
+#include "rosbag/bag_types.hpp"
 
 namespace fleetmerge {
 

@@ -1,4 +1,4 @@
-#include "io/binary_file.hpp"
+#include "rosbag/binary_file.hpp"
 
 #include "core/error.hpp"
 

@@ -1,13 +1,13 @@
-#include "io/mcap_file.hpp"
+#include "rosbag/mcap_file.hpp"
 
 #include <cstring>
 #include <functional>
 #include <map>
 
 #include "core/error.hpp"
-#include "io/binary_file.hpp"
-#include "io/byte_reader.hpp"
-#include "io/decompress.hpp"
+#include "rosbag/binary_file.hpp"
+#include "rosbag/byte_reader.hpp"
+#include "rosbag/decompress.hpp"
 
 namespace fleetmerge {
 namespace {

@@ -1,0 +1,290 @@
+#include "rosbag/mcap_writer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+
+#include "core/error.hpp"
+#include "rosbag/byte_writer.hpp"
+
+namespace fleetmerge {
+namespace {
+
+constexpr char kMagic[] = "\x89MCAP0\r\n";
+constexpr std::size_t kMagicSize = 8;
+
+enum Opcode : std::uint8_t {
+  kHeader = 0x01,
+  kFooter = 0x02,
+  kSchema = 0x03,
+  kChannel = 0x04,
+  kMessage = 0x05,
+  kChunk = 0x06,
+  kMessageIndex = 0x07,
+  kChunkIndex = 0x08,
+  kStatistics = 0x0b,
+  kMetadata = 0x0c,
+  kMetadataIndex = 0x0d,
+  kSummaryOffset = 0x0e,
+  kDataEnd = 0x0f,
+};
+
+// One record: opcode, uint64 content length, content.
+void PutRecord(ByteWriter& out, Opcode opcode, const std::string& content) {
+  out.Put(static_cast<std::uint8_t>(opcode));
+  out.Put(static_cast<std::uint64_t>(content.size()));
+  out.Bytes(content);
+}
+
+// Map<string, string>: a uint32 byte length, then key/value strings, keys sorted.
+std::string StringMap(const std::map<std::string, std::string>& entries) {
+  ByteWriter body;
+  for (const auto& [key, value] : entries) {
+    body.Prefixed(key);
+    body.Prefixed(value);
+  }
+  ByteWriter out;
+  out.Prefixed(body.bytes());
+  return out.bytes();
+}
+
+const std::array<std::uint32_t, 256>& CrcTable() {
+  static const std::array<std::uint32_t, 256> table = [] {
+    std::array<std::uint32_t, 256> t{};
+    for (std::uint32_t n = 0; n < 256; ++n) {
+      std::uint32_t c = n;
+      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+      t[n] = c;
+    }
+    return t;
+  }();
+  return table;
+}
+
+}  // namespace
+
+std::uint32_t Crc32(const std::string& bytes, std::size_t begin, std::size_t end) {
+  const auto& table = CrcTable();
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (std::size_t i = begin; i < end; ++i) {
+    c = table[(c ^ static_cast<unsigned char>(bytes[i])) & 0xFFu] ^ (c >> 8);
+  }
+  return c ^ 0xFFFFFFFFu;
+}
+
+McapWriter::McapWriter(std::string profile, std::string library)
+    : profile_(std::move(profile)), library_(std::move(library)) {}
+
+std::uint16_t McapWriter::AddSchema(const std::string& name, const std::string& encoding,
+                                    const std::string& data) {
+  const auto id = static_cast<std::uint16_t>(schemas_.size() + 1);
+  schemas_.push_back({id, name, encoding, data});
+  return id;
+}
+
+std::uint16_t McapWriter::AddChannel(std::uint16_t schema_id, const std::string& topic,
+                                     const std::string& message_encoding,
+                                     const std::map<std::string, std::string>& metadata) {
+  if (schema_id == 0 || schema_id > schemas_.size()) {
+    throw Error("MCAP writer: channel " + topic + " names schema " + std::to_string(schema_id) +
+                ", which was not added");
+  }
+  const auto id = static_cast<std::uint16_t>(channels_.size() + 1);
+  channels_.push_back({id, schema_id, topic, message_encoding, metadata});
+  return id;
+}
+
+void McapWriter::AddMessage(std::uint16_t channel_id, std::uint64_t log_time_ns,
+                            std::uint64_t publish_time_ns, const std::string& data) {
+  if (channel_id == 0 || channel_id > channels_.size()) {
+    throw Error("MCAP writer: a message names channel " + std::to_string(channel_id) +
+                ", which was not added");
+  }
+  const auto sequence = static_cast<std::uint32_t>(
+      std::count_if(messages_.begin(), messages_.end(),
+                    [&](const Message& m) { return m.channel_id == channel_id; }));
+  messages_.push_back({channel_id, sequence, log_time_ns, publish_time_ns, data});
+}
+
+void McapWriter::AddMetadata(const std::string& name,
+                             const std::map<std::string, std::string>& metadata) {
+  metadata_.push_back({name, metadata});
+}
+
+std::string McapWriter::Finish() const {
+  // Record contents, each built once and written both in the chunk and in the summary.
+  std::vector<std::string> schema_records, channel_records;
+  for (const Schema& s : schemas_) {
+    ByteWriter r;
+    r.Put(s.id);
+    r.Prefixed(s.name);
+    r.Prefixed(s.encoding);
+    r.Prefixed(s.data);
+    schema_records.push_back(r.bytes());
+  }
+  for (const Channel& c : channels_) {
+    ByteWriter r;
+    r.Put(c.id);
+    r.Put(c.schema_id);
+    r.Prefixed(c.topic);
+    r.Prefixed(c.message_encoding);
+    r.Bytes(StringMap(c.metadata));
+    channel_records.push_back(r.bytes());
+  }
+
+  // The chunk's records; each message's offset inside them goes to its channel's MessageIndex.
+  ByteWriter chunk_records;
+  for (const std::string& r : schema_records) PutRecord(chunk_records, kSchema, r);
+  for (const std::string& r : channel_records) PutRecord(chunk_records, kChannel, r);
+  std::map<std::uint16_t, std::vector<std::pair<std::uint64_t, std::uint64_t>>> index;
+  std::map<std::uint16_t, std::uint64_t> counts;
+  std::uint64_t start_ns = std::numeric_limits<std::uint64_t>::max(), end_ns = 0;
+  for (const Message& m : messages_) {
+    index[m.channel_id].push_back({m.log_time_ns, chunk_records.size()});
+    ++counts[m.channel_id];
+    start_ns = std::min(start_ns, m.log_time_ns);
+    end_ns = std::max(end_ns, m.log_time_ns);
+    ByteWriter r;
+    r.Put(m.channel_id);
+    r.Put(m.sequence);
+    r.Put(m.log_time_ns);
+    r.Put(m.publish_time_ns);
+    r.Bytes(m.data);
+    PutRecord(chunk_records, kMessage, r.bytes());
+  }
+  if (messages_.empty()) start_ns = 0;
+
+  ByteWriter file;
+  file.Bytes(std::string_view(kMagic, kMagicSize));
+  {
+    ByteWriter r;
+    r.Prefixed(profile_);
+    r.Prefixed(library_);
+    PutRecord(file, kHeader, r.bytes());
+  }
+  const std::uint64_t chunk_start = file.size();
+  {
+    const std::string& records = chunk_records.bytes();
+    ByteWriter r;
+    r.Put(start_ns);
+    r.Put(end_ns);
+    r.Put(static_cast<std::uint64_t>(records.size()));
+    r.Put(Crc32(records, 0, records.size()));
+    r.Prefixed("");  // compression: none
+    r.Put(static_cast<std::uint64_t>(records.size()));
+    r.Bytes(records);
+    PutRecord(file, kChunk, r.bytes());
+  }
+  const std::uint64_t chunk_length = file.size() - chunk_start;
+  std::map<std::uint16_t, std::uint64_t> index_offsets;
+  const std::uint64_t indexes_start = file.size();
+  for (const auto& [channel_id, entries] : index) {
+    index_offsets[channel_id] = file.size();
+    ByteWriter body;
+    for (const auto& [time_ns, offset] : entries) {
+      body.Put(time_ns);
+      body.Put(offset);
+    }
+    ByteWriter r;
+    r.Put(channel_id);
+    r.Prefixed(body.bytes());
+    PutRecord(file, kMessageIndex, r.bytes());
+  }
+  const std::uint64_t indexes_length = file.size() - indexes_start;
+  struct MetadataPlace {
+    std::uint64_t offset, length;
+    std::string name;
+  };
+  std::vector<MetadataPlace> metadata_places;
+  for (const Metadata& m : metadata_) {
+    const std::uint64_t offset = file.size();
+    ByteWriter r;
+    r.Prefixed(m.name);
+    r.Bytes(StringMap(m.entries));
+    PutRecord(file, kMetadata, r.bytes());
+    metadata_places.push_back({offset, file.size() - offset, m.name});
+  }
+  {
+    ByteWriter r;
+    r.Put(Crc32(file.bytes(), 0, file.size()));
+    PutRecord(file, kDataEnd, r.bytes());
+  }
+
+  // Summary section: each group's place goes to a SummaryOffset record.
+  const std::uint64_t summary_start = file.size();
+  std::vector<std::tuple<Opcode, std::uint64_t, std::uint64_t>> groups;
+  const auto group = [&](Opcode opcode, const std::vector<std::string>& records) {
+    if (records.empty()) return;
+    const std::uint64_t start = file.size();
+    for (const std::string& r : records) PutRecord(file, opcode, r);
+    groups.emplace_back(opcode, start, file.size() - start);
+  };
+  group(kSchema, schema_records);
+  group(kChannel, channel_records);
+  {
+    ByteWriter r;
+    r.Put(static_cast<std::uint64_t>(messages_.size()));
+    r.Put(static_cast<std::uint16_t>(schemas_.size()));
+    r.Put(static_cast<std::uint32_t>(channels_.size()));
+    r.Put(static_cast<std::uint32_t>(0));  // attachments
+    r.Put(static_cast<std::uint32_t>(metadata_.size()));
+    r.Put(static_cast<std::uint32_t>(1));  // chunks
+    r.Put(start_ns);
+    r.Put(end_ns);
+    ByteWriter map;
+    for (const auto& [channel_id, count] : counts) {
+      map.Put(channel_id);
+      map.Put(count);
+    }
+    r.Prefixed(map.bytes());
+    group(kStatistics, {r.bytes()});
+  }
+  {
+    ByteWriter r;
+    r.Put(start_ns);
+    r.Put(end_ns);
+    r.Put(chunk_start);
+    r.Put(chunk_length);
+    ByteWriter map;
+    for (const auto& [channel_id, offset] : index_offsets) {
+      map.Put(channel_id);
+      map.Put(offset);
+    }
+    r.Prefixed(map.bytes());
+    r.Put(indexes_length);
+    r.Prefixed("");
+    r.Put(static_cast<std::uint64_t>(chunk_records.size()));  // compressed size: stored as is
+    r.Put(static_cast<std::uint64_t>(chunk_records.size()));
+    group(kChunkIndex, {r.bytes()});
+  }
+  {
+    std::vector<std::string> records;
+    for (const MetadataPlace& place : metadata_places) {
+      ByteWriter r;
+      r.Put(place.offset);
+      r.Put(place.length);
+      r.Prefixed(place.name);
+      records.push_back(r.bytes());
+    }
+    group(kMetadataIndex, records);
+  }
+  const std::uint64_t summary_offset_start = file.size();
+  for (const auto& [opcode, start, length] : groups) {
+    ByteWriter r;
+    r.Put(static_cast<std::uint8_t>(opcode));
+    r.Put(start);
+    r.Put(length);
+    PutRecord(file, kSummaryOffset, r.bytes());
+  }
+  // Footer: its CRC covers the summary section and the footer up to the CRC field.
+  const std::size_t footer_start = file.size();
+  file.Put(static_cast<std::uint8_t>(kFooter));
+  file.Put(static_cast<std::uint64_t>(8 + 8 + 4));
+  file.Put(summary_start);
+  file.Put(summary_offset_start);
+  file.Put(Crc32(file.bytes(), summary_start, footer_start + 1 + 8 + 8 + 8));
+  file.Bytes(std::string_view(kMagic, kMagicSize));
+  return file.bytes();
+}
+
+}  // namespace fleetmerge
