@@ -227,14 +227,17 @@ void SaveMap(const Map& map, const std::string& yaml_path) {
   SaveMap(grid, std::filesystem::path(yaml_path), {});
 }
 
-std::vector<Hypothesis> Pair(const Map& a, const Map& b, const Options& options) {
+PairHypotheses Pair(const Map& a, const Map& b, const Options& options) {
   const PairOptions pair_options = ToFleetOptions(options).pair;
   const OccupancyGrid grid_a = ToGrid(a), grid_b = ToGrid(b);
-  std::vector<Hypothesis> out;
-  for (const PairHypothesis& h :
-       MergePair(grid_a, grid_b, pair_options, options.threads).hypotheses) {
-    out.push_back({h.T_a_b.x_m(), h.T_a_b.y_m(), h.T_a_b.yaw_rad(), h.omega});
+  const PairResult result = MergePair(grid_a, grid_b, pair_options, options.threads);
+  PairHypotheses out;
+  for (const PairHypothesis& h : result.hypotheses) {
+    out.hypotheses.push_back({h.T_a_b.x_m(), h.T_a_b.y_m(), h.T_a_b.yaw_rad(), h.omega,
+                              h.overlap_cells, h.wall_agreement});
   }
+  out.margin = result.margin_nats;
+  out.ambiguous = result.ambiguous;
   return out;
 }
 

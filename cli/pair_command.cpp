@@ -15,6 +15,7 @@
 #include "pipeline/composite.hpp"
 #include "pipeline/html_report.hpp"
 #include "pipeline/preview.hpp"
+#include "pipeline/report_json.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -34,12 +35,7 @@ HtmlReport PairPage(const PairCommand& command, const LoadedMap& a, const Loaded
   const auto pose = [](const Pose2& T) {
     return nlohmann::json{{"x", T.x_m()}, {"y", T.y_m()}, {"yaw", T.yaw_rad()}};
   };
-  nlohmann::json hypotheses = nlohmann::json::array();
-  for (const auto& h : result.hypotheses) {
-    nlohmann::json j = pose(h.T_a_b);
-    j["omega"] = h.omega;
-    hypotheses.push_back(j);
-  }
+  const nlohmann::json hypotheses = HypothesesJson(result.hypotheses);
   HtmlReport page;
   page.title = name_b + " on " + name_a;
   page.report = {
@@ -64,6 +60,10 @@ HtmlReport PairPage(const PairCommand& command, const LoadedMap& a, const Loaded
          {"b", name_b},
          {"omega", result.hypotheses.front().omega},
          {"accepted", true},
+         {"overlap_cells", result.hypotheses.front().overlap_cells},
+         {"wall_agreement", result.hypotheses.front().wall_agreement},
+         {"ambiguous", result.ambiguous},
+         {"margin", MarginJson(result.margin_nats)},
          {"edge_hypothesis", 0},
          {"hypotheses", hypotheses},
          {"note", "fleetmerge pair merges at the best hypothesis without an acceptance test"}}}}};
@@ -118,14 +118,21 @@ void PrintText(const std::vector<JobMap>& maps, const PairResult& result, std::o
     return;
   }
   out << "pose of b's map frame in a's map frame, best first:\n"
-      << "  #      x [m]      y [m]  yaw [rad]  yaw [deg]   omega\n";
+      << "  #      x [m]      y [m]  yaw [rad]  yaw [deg]   omega  overlap  walls\n";
   int rank = 1;
   for (const auto& h : result.hypotheses) {
     out << std::fixed << std::setw(3) << rank++ << std::setprecision(3) << std::setw(11)
         << h.T_a_b.x_m() << std::setw(11) << h.T_a_b.y_m() << std::setprecision(4) << std::setw(11)
         << h.T_a_b.yaw_rad() << std::setprecision(2) << std::setw(11)
         << h.T_a_b.yaw_rad() * 180.0 / M_PI << std::setprecision(4) << std::setw(8) << h.omega
-        << "\n";
+        << std::setw(9) << h.overlap_cells << std::setprecision(3) << std::setw(7)
+        << h.wall_agreement << "\n";
+  }
+  if (result.ambiguous) {
+    out << "AMBIGUOUS: hypotheses 1 and 2 are different poses that the maps cannot tell apart "
+           "(evidence margin "
+        << std::setprecision(2) << result.margin_nats
+        << " nats); hypothesis 1 is a coin toss: confirm it with a third map or a known pose\n";
   }
   out.unsetf(std::ios::floatfield);
 }
@@ -173,13 +180,9 @@ int RunPairCommand(const PairCommand& command, std::ostream& out) {
                         {"b", command.b_yaml.string()},
                         {"a_name", maps[0].name},
                         {"b_name", maps[1].name},
-                        {"hypotheses", nlohmann::json::array()}};
-    for (const auto& h : result.hypotheses) {
-      j["hypotheses"].push_back({{"x", h.T_a_b.x_m()},
-                                 {"y", h.T_a_b.y_m()},
-                                 {"yaw", h.T_a_b.yaw_rad()},
-                                 {"omega", h.omega}});
-    }
+                        {"hypotheses", HypothesesJson(result.hypotheses)},
+                        {"ambiguous", result.ambiguous},
+                        {"margin", MarginJson(result.margin_nats)}};
     j["resolution"] = result.resolution_m;
     if (files) {
       j["merged_map"] = files->yaml.string();

@@ -1,6 +1,7 @@
 #include "core/map_features.hpp"
 
 #include <algorithm>
+#include <opencv2/core.hpp>
 
 #include "core/hough_spectrum.hpp"
 #include "core/point_sampling.hpp"
@@ -14,6 +15,12 @@ MapFeatures::MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& opt
     OccupiedAndFreeCellCenters(grid, &occupied, &free);  // the search also needs open space
   } else {
     occupied = OccupiedCellCenters(grid);
+  }
+  const double known = cv::countNonZero(grid.cells());  // kUnknown is 0
+  if (known > 0) {
+    near_wall_share = cv::countNonZero(near_walls & (grid.cells() != 0)) / known;
+    occupied_share =
+        cv::countNonZero(grid.cells() == static_cast<std::uint8_t>(CellState::kOccupied)) / known;
   }
   spectra_points = SamplePoints(occupied, options.spectra_sampling);
   if (!occupied.empty()) {

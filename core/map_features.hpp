@@ -27,6 +27,9 @@ struct MapFeatures {
                                                 // when the map has no occupied cell
   RowSpans known_spans;                         // KnownRowSpans(grid)
   cv::Mat1b near_walls;                         // NearWallMask(grid): core/wall_agreement.hpp
+  // Chance rates of core/pose_evidence.hpp, as shares of the known cells (0 for an empty map).
+  double near_wall_share = 0.0;
+  double occupied_share = 0.0;
 };
 
 // GenerateHypotheses (core/hypothesis_generator.hpp) on precomputed features: the same result.

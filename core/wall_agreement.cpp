@@ -23,20 +23,20 @@ namespace {
 // Counts b's walls (cell centres p_b, in b's grid frame) that land on a's known cells, and of
 // those the ones near a's walls.
 template <typename ForEachWall>
-double CountWallsOnWalls(const OccupancyGrid& a, const cv::Mat1b& near_wall, const Pose2& T_ga_gb,
-                         const ForEachWall& for_each_wall) {
+WallCount CountWallsOnWalls(const OccupancyGrid& a, const cv::Mat1b& near_wall,
+                            const Pose2& T_ga_gb, const ForEachWall& for_each_wall) {
   const auto unknown = static_cast<std::uint8_t>(CellState::kUnknown);
-  long on_known = 0, on_wall = 0;
+  WallCount count;
   for_each_wall([&](const Eigen::Vector2d& p_b) {
     const Eigen::Vector2d p = T_ga_gb * p_b;
     const int ia = static_cast<int>(std::floor(p.x()));
     const int ja = static_cast<int>(std::floor(p.y()));
     if (ia < 0 || ja < 0 || ia >= a.width() || ja >= a.height()) return;
     if (a.cells()(ja, ia) == unknown) return;
-    ++on_known;
-    on_wall += near_wall(ja, ia) != 0;
+    ++count.on_known;
+    count.near_wall += near_wall(ja, ia) != 0;
   });
-  return on_known < kMinWallsJudged ? 0.0 : double(on_wall) / double(on_known);
+  return count;
 }
 
 }  // namespace
@@ -44,22 +44,29 @@ double CountWallsOnWalls(const OccupancyGrid& a, const cv::Mat1b& near_wall, con
 double WallAgreement(const OccupancyGrid& a, const cv::Mat1b& near_wall, const OccupancyGrid& b,
                      const Pose2& T_ga_gb) {
   const auto occupied = static_cast<std::uint8_t>(CellState::kOccupied);
-  return CountWallsOnWalls(a, near_wall, T_ga_gb, [&](const auto& visit) {
-    for (int j = 0; j < b.height(); ++j) {
-      const std::uint8_t* row = b.cells().ptr<std::uint8_t>(j);
-      for (int i = 0; i < b.width(); ++i) {
-        if (row[i] == occupied) visit(Eigen::Vector2d(i + 0.5, j + 0.5));
-      }
-    }
-  });
+  return CountWallsOnWalls(a, near_wall, T_ga_gb,
+                           [&](const auto& visit) {
+                             for (int j = 0; j < b.height(); ++j) {
+                               const std::uint8_t* row = b.cells().ptr<std::uint8_t>(j);
+                               for (int i = 0; i < b.width(); ++i) {
+                                 if (row[i] == occupied) visit(Eigen::Vector2d(i + 0.5, j + 0.5));
+                               }
+                             }
+                           })
+      .share();
 }
 
-double WallAgreement(const OccupancyGrid& a, const cv::Mat1b& near_wall,
+WallCount CountWalls(const OccupancyGrid& a, const cv::Mat1b& near_wall,
                      const std::vector<Eigen::Vector2f>& b_wall_centres, const Pose2& T_ga_gb) {
   // Centres i + 0.5 are exact in float (cells < 2^23), so the cast gives WallAgreement's points.
   return CountWallsOnWalls(a, near_wall, T_ga_gb, [&](const auto& visit) {
     for (const Eigen::Vector2f& c : b_wall_centres) visit(c.cast<double>());
   });
+}
+
+double WallAgreement(const OccupancyGrid& a, const cv::Mat1b& near_wall,
+                     const std::vector<Eigen::Vector2f>& b_wall_centres, const Pose2& T_ga_gb) {
+  return CountWalls(a, near_wall, b_wall_centres, T_ga_gb).share();
 }
 
 double SymmetricWallAgreement(const OccupancyGrid& a, const OccupancyGrid& b,

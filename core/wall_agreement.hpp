@@ -33,6 +33,18 @@ cv::Mat1b NearWallMask(const OccupancyGrid& grid);
 double WallAgreement(const OccupancyGrid& a, const cv::Mat1b& a_near_walls, const OccupancyGrid& b,
                      const Pose2& T_ga_gb);
 
+// b's walls that land on a's known cells, and of those the ones near a's walls.
+struct WallCount {
+  long on_known = 0;
+  long near_wall = 0;
+  // The agreement: 0 when fewer than kMinWallsJudged walls are judged.
+  double share() const {
+    return on_known < kMinWallsJudged ? 0.0 : double(near_wall) / double(on_known);
+  }
+};
+WallCount CountWalls(const OccupancyGrid& a, const cv::Mat1b& a_near_walls,
+                     const std::vector<Eigen::Vector2f>& b_wall_centres, const Pose2& T_ga_gb);
+
 // WallAgreement with b given by its occupied cell centres (OccupiedCellCenters(b), any order):
 // the same count without scanning all of b's cells for its few walls on every call.
 double WallAgreement(const OccupancyGrid& a, const cv::Mat1b& a_near_walls,

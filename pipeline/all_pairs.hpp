@@ -21,6 +21,8 @@ struct PairOutcome {
   std::vector<PairHypothesis> hypotheses;  // pose of b's map frame in a's, best first
   std::int64_t overlap_cells = 0;          // cells known in both under the best hypothesis
   double wall_agreement = 0.0;             // core/wall_agreement.hpp, of the best hypothesis
+  double margin_nats = 0.0;                // PairResult's: the best's lead in evidence
+  bool ambiguous = false;                  // PairResult's: the runner-up is as good
   bool accepted = false;                   // an edge of the final pose graph
   int edge_hypothesis = -1;                // the hypothesis the edge uses (0 = the best)
   std::string note;                        // why it was rejected or replaced

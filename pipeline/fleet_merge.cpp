@@ -90,6 +90,17 @@ void RejectWeakBridge(double min_bridge_wall_agreement, PairOutcome& pair) {
   pair.note = note.str();
 }
 
+// Rejects an ambiguous edge that no cycle or other pair confirms (pipeline/weak_bridges.hpp).
+void RejectUnconfirmedAmbiguous(PairOutcome& pair) {
+  std::ostringstream note;
+  note << "rejected: ambiguous (hypothesis 2 is a different pose with nearly the same evidence, "
+          "margin "
+       << pair.margin_nats << " nats) and no cycle or other pair confirms hypothesis 1";
+  pair.accepted = false;
+  pair.edge_hypothesis = -1;
+  pair.note = note.str();
+}
+
 // The component's merged map, on its reference map's cells: at the job's resolution when the
 // job sets one, else at the reference's own. Users navigate in the reference robot's map, so
 // where only that map knows a cell the merged map holds that very cell. Inputs finer than the
@@ -159,9 +170,14 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
       const auto verdicts =
           JudgeSolvedPairs(result.maps, walls, result.pairs, graph, options.min_overlap_cells,
                            options.min_wall_agreement, options.pose_graph, options.threads);
-      const auto split = MostContradictedSplit(verdicts, graph.component_of);
-      if (!split) break;
-      CutSplit(*split, result.pairs);
+      if (const auto ambiguous =
+              UnconfirmedAmbiguousEdge(static_cast<int>(maps.size()), result.pairs, verdicts)) {
+        RejectUnconfirmedAmbiguous(result.pairs[*ambiguous]);
+      } else {
+        const auto split = MostContradictedSplit(verdicts, graph.component_of);
+        if (!split) break;
+        CutSplit(*split, result.pairs);
+      }
     }
     graph =
         SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph);

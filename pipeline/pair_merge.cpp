@@ -63,8 +63,14 @@ int CoarseScale(const OccupancyGrid& a, const OccupancyGrid& b, const PairOption
 
 }  // namespace
 
-std::vector<CellHypothesis> RankedCellHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
-                                                 const PairOptions& options, int threads) {
+PairHypothesis ToPairHypothesis(const OccupancyGrid& a, const OccupancyGrid& b,
+                                const CellHypothesis& h) {
+  return {MapPoseFromCellPose(a.geometry(), b.geometry(), h.T_ga_gb), h.omega, h.overlap_cells,
+          h.wall_agreement, h.evidence_nats};
+}
+
+RankedHypotheses RankedCellHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
+                                      const PairOptions& options, int threads) {
   std::unique_ptr<PreparedMap> prepared[2];
   const OccupancyGrid* grids[2] = {&a, &b};
   ParallelFor(2, threads, [&](std::size_t k) {
@@ -75,9 +81,8 @@ std::vector<CellHypothesis> RankedCellHypotheses(const OccupancyGrid& a, const O
   return RankedCellHypotheses(*prepared[0], *prepared[1], options, threads);
 }
 
-std::vector<CellHypothesis> RankedCellHypotheses(const PreparedMap& prepared_a,
-                                                 const PreparedMap& prepared_b,
-                                                 const PairOptions& options, int threads) {
+RankedHypotheses RankedCellHypotheses(const PreparedMap& prepared_a, const PreparedMap& prepared_b,
+                                      const PairOptions& options, int threads) {
   const OccupancyGrid& a = prepared_a.grid();
   const OccupancyGrid& b = prepared_b.grid();
   const int wanted = options.hypotheses.max_hypotheses;
@@ -102,8 +107,14 @@ std::vector<CellHypothesis> RankedCellHypotheses(const PreparedMap& prepared_a,
     // Several candidates may have converged onto one pose.
     hypotheses = RemoveDuplicates(std::move(hypotheses), options.hypotheses);
   }
-  if (static_cast<int>(hypotheses.size()) > wanted) hypotheses.resize(std::max(wanted, 0));
-  return hypotheses;
+  // Ranked before the cut, so that a runner-up beyond `wanted` still tells a coin toss.
+  RankedHypotheses ranked =
+      RankByEvidence(prepared_a.features(), prepared_b.features(), std::move(hypotheses),
+                     options.hypotheses.min_overlap_cells);
+  if (static_cast<int>(ranked.hypotheses.size()) > wanted) {
+    ranked.hypotheses.resize(std::max(wanted, 0));
+  }
+  return ranked;
 }
 
 PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairOptions& options,
@@ -120,10 +131,12 @@ PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairO
   });
   const OccupancyGrid& a_same = same[0];
   const OccupancyGrid& b_same = same[1];
-  for (const auto& h : RankedCellHypotheses(a_same, b_same, options, threads)) {
-    result.hypotheses.push_back(
-        {MapPoseFromCellPose(a_same.geometry(), b_same.geometry(), h.T_ga_gb), h.omega});
+  const RankedHypotheses ranked = RankedCellHypotheses(a_same, b_same, options, threads);
+  for (const CellHypothesis& h : ranked.hypotheses) {
+    result.hypotheses.push_back(ToPairHypothesis(a_same, b_same, h));
   }
+  result.margin_nats = ranked.margin_nats;
+  result.ambiguous = ranked.ambiguous;
   return result;
 }
 

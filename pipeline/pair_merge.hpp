@@ -8,6 +8,7 @@
 #include "core/hypothesis_generator.hpp"
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
+#include "core/pose_evidence.hpp"
 #include "job/pair_options.hpp"
 #include "pipeline/prepared_map.hpp"
 
@@ -16,12 +17,17 @@ namespace fleetmerge {
 struct PairHypothesis {
   Pose2 T_a_b;  // pose of b's map frame in a's map frame (metres, radians)
   double omega = 0.0;
+  std::int64_t overlap_cells = 0;  // cells known in both maps (agr + dis of Eq. 1)
+  double wall_agreement = 0.0;     // core/wall_agreement.hpp
+  double evidence_nats = 0.0;      // core/pose_evidence.hpp
 };
 
 struct PairResult {
-  std::vector<PairHypothesis> hypotheses;  // best (highest omega) first
-  double resolution_m = 0.0;               // the resolution the maps were compared at
-  bool resampled = false;                  // one map was resampled to the other's (finer) cells
+  std::vector<PairHypothesis> hypotheses;  // best first (core/pose_evidence.hpp)
+  double margin_nats = 0.0;   // evidence of the best minus the runner-up's; +inf without one
+  bool ambiguous = false;     // the runner-up, a different pose, is as good: a coin toss
+  double resolution_m = 0.0;  // the resolution the maps were compared at
+  bool resampled = false;     // one map was resampled to the other's (finer) cells
 };
 
 // Maps of different resolutions are compared at the finer one (the coarser map is resampled;
@@ -32,12 +38,16 @@ struct PairResult {
 PairResult MergePair(const OccupancyGrid& a, const OccupancyGrid& b, const PairOptions& options,
                      int threads = 1);
 
+// A hypothesis of cell-unit pose as a map-frame one.
+PairHypothesis ToPairHypothesis(const OccupancyGrid& a, const OccupancyGrid& b,
+                                const CellHypothesis& h);
+
 // The hypotheses of two maps that already share a resolution, best first, in cell units.
-std::vector<CellHypothesis> RankedCellHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
-                                                 const PairOptions& options, int threads = 1);
+RankedHypotheses RankedCellHypotheses(const OccupancyGrid& a, const OccupancyGrid& b,
+                                      const PairOptions& options, int threads = 1);
 // The same on maps prepared once (pipeline/prepared_map.hpp) with the same options: what a fleet
 // uses, so that each map's own work is shared by all its pairs.
-std::vector<CellHypothesis> RankedCellHypotheses(const PreparedMap& a, const PreparedMap& b,
-                                                 const PairOptions& options, int threads = 1);
+RankedHypotheses RankedCellHypotheses(const PreparedMap& a, const PreparedMap& b,
+                                      const PairOptions& options, int threads = 1);
 
 }  // namespace fleetmerge

@@ -1,5 +1,7 @@
 #include "pipeline/report_json.hpp"
 
+#include <cmath>
+
 namespace fleetmerge {
 namespace {
 
@@ -8,22 +10,37 @@ nlohmann::json PoseJson(const Pose2& T) {
 }
 
 nlohmann::json PairJson(const Job& job, const PairOutcome& p) {
-  nlohmann::json hypotheses = nlohmann::json::array();
-  for (const auto& h : p.hypotheses) {
-    nlohmann::json j = PoseJson(h.T_a_b);
-    j["omega"] = h.omega;
-    hypotheses.push_back(j);
-  }
-  nlohmann::json j = {{"a", job.maps[p.a].name},           {"b", job.maps[p.b].name},
-                      {"omega", p.best_omega()},           {"accepted", p.accepted},
-                      {"hypotheses", hypotheses},          {"overlap_cells", p.overlap_cells},
-                      {"wall_agreement", p.wall_agreement}};
+  nlohmann::json j = {{"a", job.maps[p.a].name},
+                      {"b", job.maps[p.b].name},
+                      {"omega", p.best_omega()},
+                      {"accepted", p.accepted},
+                      {"hypotheses", HypothesesJson(p.hypotheses)},
+                      {"overlap_cells", p.overlap_cells},
+                      {"wall_agreement", p.wall_agreement},
+                      {"ambiguous", p.ambiguous},
+                      {"margin", MarginJson(p.margin_nats)}};
   if (p.accepted) j["edge_hypothesis"] = p.edge_hypothesis;
   if (!p.note.empty()) j["note"] = p.note;
   return j;
 }
 
 }  // namespace
+
+nlohmann::json HypothesesJson(const std::vector<PairHypothesis>& hypotheses) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const PairHypothesis& h : hypotheses) {
+    nlohmann::json j = PoseJson(h.T_a_b);
+    j["omega"] = h.omega;
+    j["overlap_cells"] = h.overlap_cells;
+    j["wall_agreement"] = h.wall_agreement;
+    out.push_back(j);
+  }
+  return out;
+}
+
+nlohmann::json MarginJson(double margin_nats) {
+  return std::isfinite(margin_nats) ? nlohmann::json(margin_nats) : nlohmann::json(nullptr);
+}
 
 nlohmann::json MakeReport(const Job& job, const FleetResult& result,
                           const std::vector<std::string>& merged_files, const JobTiming& timing) {

@@ -3,7 +3,9 @@
 //   maps[]: name, source, component, pose {x, y, yaw} (the map frame in its component's merged
 //           frame; the component's reference map has the identity)
 //   components[]: id, maps (names), merged_map (file name; absent for an unmerged map)
-//   pairs[]: a, b, omega (best), accepted, hypotheses [{x, y, yaw, omega}] (b's frame in a's)
+//   pairs[]: a, b, omega (best), accepted, overlap_cells, wall_agreement (best), ambiguous,
+//            margin (nats; null without a runner-up: core/pose_evidence.hpp), hypotheses [{x,
+//            y, yaw, omega, overlap_cells, wall_agreement}] (b's frame in a's, best first)
 //   timing_ms: load, pairs, refine, composite, write, total; report_html (writing report.html,
 //              pipeline/html_report.hpp, after `total` was taken) when the set is written
 // Jobs with octrees add (pipeline/octree_maps.hpp, AddOctreesToReport): maps[].pose.z and
@@ -23,6 +25,11 @@ namespace fleetmerge {
 struct JobTiming {
   double load_ms = 0.0, write_ms = 0.0, total_ms = 0.0;
 };
+
+// A pair's hypotheses as report.json and `pair --json` give them.
+nlohmann::json HypothesesJson(const std::vector<PairHypothesis>& hypotheses);
+// The ranking margin: null when there is no runner-up (infinite).
+nlohmann::json MarginJson(double margin_nats);
 
 // merged_files[c]: the merged map's file name of component c, empty when it has none.
 nlohmann::json MakeReport(const Job& job, const FleetResult& result,

@@ -1,5 +1,7 @@
 #include "pipeline/weak_bridges.hpp"
 
+#include <algorithm>
+
 #include "pipeline/fleet_graph.hpp"
 
 namespace fleetmerge {
@@ -27,6 +29,26 @@ std::optional<int> WeakestBridge(int map_count, const std::vector<PairOutcome>& 
     if (without[p.a] != without[p.b]) weakest = k;
   }
   return weakest;
+}
+
+std::optional<int> UnconfirmedAmbiguousEdge(int map_count, const std::vector<PairOutcome>& pairs,
+                                            const std::vector<PairVerdict>& verdicts) {
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    const PairOutcome& p = pairs[k];
+    // An edge on another hypothesis was chosen by the cycles it closes: confirmed.
+    if (!p.accepted || !p.ambiguous || p.edge_hypothesis != 0) continue;
+    const std::vector<int> without = Components(map_count, pairs, k);
+    if (without[p.a] == without[p.b]) continue;  // a cycle passes through it
+    const auto across = [&](const PairVerdict& v) {
+      if (v.a == p.a && v.b == p.b) return false;  // the pair itself
+      return (without[v.a] == without[p.a] && without[v.b] == without[p.b]) ||
+             (without[v.a] == without[p.b] && without[v.b] == without[p.a]);
+    };
+    const bool confirmed = std::any_of(verdicts.begin(), verdicts.end(),
+                                       [&](const auto& v) { return v.agrees && across(v); });
+    if (!confirmed) return k;
+  }
+  return std::nullopt;
 }
 
 }  // namespace fleetmerge

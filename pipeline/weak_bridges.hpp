@@ -20,8 +20,19 @@
 #include <vector>
 
 #include "pipeline/all_pairs.hpp"
+#include "pipeline/corroboration.hpp"
 
 namespace fleetmerge {
+
+// An ambiguous pair (core/pose_evidence.hpp: its runner-up, a different pose, is as good) is an
+// edge only when something else confirms the pose it was decided on: a cycle through it (the
+// cycle checks of fleet_graph.hpp kept it), or, for a bridge, another pair across it that
+// supports the solved poses (a verdict of corroboration.hpp). Returns the index in `pairs` of
+// the first accepted ambiguous edge on its best hypothesis that nothing confirms, or none. A
+// two-map component has nothing to confirm its edge with, so an ambiguous pair alone is not
+// merged.
+std::optional<int> UnconfirmedAmbiguousEdge(int map_count, const std::vector<PairOutcome>& pairs,
+                                            const std::vector<PairVerdict>& verdicts);
 
 // The index in `pairs` of the accepted bridge edge with the weakest walls among those of
 // components of three or more maps whose walls are below min_wall_agreement, or none.

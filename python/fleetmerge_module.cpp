@@ -129,9 +129,36 @@ PYBIND11_MODULE(_fleetmerge, m) {
       .def_readonly("y", &fleetmerge::Hypothesis::y)
       .def_readonly("yaw", &fleetmerge::Hypothesis::yaw)
       .def_readonly("omega", &fleetmerge::Hypothesis::omega)
+      .def_readonly("overlap_cells", &fleetmerge::Hypothesis::overlap_cells)
+      .def_readonly("wall_agreement", &fleetmerge::Hypothesis::wall_agreement)
       .def("__repr__", [](const fleetmerge::Hypothesis& h) {
         return "<fleetmerge.Hypothesis x=" + std::to_string(h.x) + " y=" + std::to_string(h.y) +
                " yaw=" + std::to_string(h.yaw) + " omega=" + std::to_string(h.omega) + ">";
+      });
+
+  // Also a sequence of its hypotheses (best first): code that reads pair() as a list keeps working.
+  py::class_<fleetmerge::PairHypotheses>(m, "PairHypotheses")
+      .def_readonly("hypotheses", &fleetmerge::PairHypotheses::hypotheses)
+      .def_readonly("margin", &fleetmerge::PairHypotheses::margin)
+      .def_readonly("ambiguous", &fleetmerge::PairHypotheses::ambiguous)
+      .def("__len__", &fleetmerge::PairHypotheses::size)
+      .def("__getitem__",
+           [](const fleetmerge::PairHypotheses& p, py::ssize_t k) {
+             const auto n = static_cast<py::ssize_t>(p.size());
+             if (k < 0) k += n;
+             if (k < 0 || k >= n) throw py::index_error("hypothesis index out of range");
+             return p.hypotheses[static_cast<std::size_t>(k)];
+           })
+      .def(
+          "__iter__",
+          [](const fleetmerge::PairHypotheses& p) {
+            return py::make_iterator(p.hypotheses.begin(), p.hypotheses.end());
+          },
+          py::keep_alive<0, 1>())
+      .def("__repr__", [](const fleetmerge::PairHypotheses& p) {
+        return "<fleetmerge.PairHypotheses " + std::to_string(p.size()) +
+               " hypotheses, margin=" + std::to_string(p.margin) +
+               (p.ambiguous ? " ambiguous>" : ">");
       });
 
   py::class_<fleetmerge::Options>(m, "Options")

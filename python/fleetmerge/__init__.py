@@ -62,8 +62,11 @@ def save_map(map, path):
 
 
 def pair(a, b, n=4, **options):
-    """The n best poses of b's map frame in a's (Hypothesis .x .y .yaw .omega), best first:
-    what `fleetmerge pair --json -n N a b` prints. a and b are Maps or paths."""
+    """The n best poses of b's map frame in a's, best first: what `fleetmerge pair --json -n N
+    a b` prints. A PairHypotheses: a sequence of Hypothesis (.x .y .yaw .omega .overlap_cells
+    .wall_agreement), with .ambiguous (the runner-up is a different pose the maps cannot tell
+    apart: a coin toss) and .margin (the best's lead in evidence, nats; inf without a
+    runner-up). a and b are Maps or paths."""
     o = _options(options)
     o.hypotheses = n
     return _fleetmerge.pair(_map(a, "a"), _map(b, "b"), o)

@@ -35,13 +35,22 @@ TEST_F(CliTest, JsonHasTheDocumentedShapeAndFindsTheTruth) {
   EXPECT_EQ(j["b"], B());
   ASSERT_GE(j["hypotheses"].size(), 1u);
   ASSERT_LE(j["hypotheses"].size(), 3u);
-  // Best first: the first has the highest omega. The rest need not descend: a hypothesis that
-  // barely overlaps ranks below every one that overlaps enough, whatever its omega
-  // (SortHypotheses, core/hypothesis_generator.hpp), and the JSON does not carry the overlap.
+  // Best first: no hypothesis beats the first by more than the omega tie (0.01), within which
+  // the evidence ranks (core/pose_evidence.hpp); a hypothesis that barely overlaps ranks below
+  // every one that overlaps enough, whatever its omega.
   for (const auto& h : j["hypotheses"]) {
-    for (const char* key : {"x", "y", "yaw", "omega"}) ASSERT_TRUE(h.contains(key)) << key;
-    EXPECT_LE(h["omega"].get<double>(), j["hypotheses"][0]["omega"].get<double>()) << "best first";
+    for (const char* key : {"x", "y", "yaw", "omega", "overlap_cells", "wall_agreement"}) {
+      ASSERT_TRUE(h.contains(key)) << key;
+    }
+    EXPECT_LE(h["omega"].get<double>(), j["hypotheses"][0]["omega"].get<double>() + 0.01);
   }
+  // The true pose of this pair wins clearly: hypotheses overlap, walls agree, not a coin toss.
+  EXPECT_GT(j["hypotheses"][0]["overlap_cells"].get<long>(), 5000);
+  EXPECT_GT(j["hypotheses"][0]["wall_agreement"].get<double>(), 0.9);
+  ASSERT_TRUE(j["ambiguous"].is_boolean());
+  EXPECT_FALSE(j["ambiguous"].get<bool>());
+  ASSERT_TRUE(j["margin"].is_number());
+  EXPECT_GT(j["margin"].get<double>(), 3.0);
   const YAML::Node truth = YAML::LoadFile((*dir_ / "maps" / "truth.yaml").string())["T_a_b"];
   const auto& best = j["hypotheses"][0];
   EXPECT_NEAR(best["x"].get<double>(), truth["x"].template as<double>(), 0.05);

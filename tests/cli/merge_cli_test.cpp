@@ -113,10 +113,22 @@ void ExpectDocumentedNames(const json& report) {
                   {"b", kString},
                   {"omega", kNumber},
                   {"accepted", kBool},
+                  {"overlap_cells", kNumber},
+                  {"wall_agreement", kNumber},
+                  {"ambiguous", kBool},
                   {"hypotheses", kArray}},
                  "pairs[]");
+    // The margin is null when the pair has no runner-up.
+    ASSERT_TRUE(pair.contains("margin"));
+    EXPECT_TRUE(pair["margin"].is_number() || pair["margin"].is_null()) << pair["margin"];
     for (const json& h : pair.value("hypotheses", json::array())) {
-      ExpectFields(h, {{"x", kNumber}, {"y", kNumber}, {"yaw", kNumber}, {"omega", kNumber}},
+      ExpectFields(h,
+                   {{"x", kNumber},
+                    {"y", kNumber},
+                    {"yaw", kNumber},
+                    {"omega", kNumber},
+                    {"overlap_cells", kNumber},
+                    {"wall_agreement", kNumber}},
                    "pairs[].hypotheses[]");
     }
   }
@@ -211,9 +223,9 @@ TEST_F(MergeCliTest, ReportHasTheDocumentedNamesAndFindsTheTruth) {
   EXPECT_EQ(pair["b"], "robot_b");
   EXPECT_TRUE(pair["accepted"].get<bool>());
   ASSERT_GE(pair["hypotheses"].size(), 1u);
-  double best = 0.0;
-  for (const json& h : pair["hypotheses"]) best = std::max(best, h.value("omega", 0.0));
-  EXPECT_EQ(pair["omega"].get<double>(), best) << "omega is the best hypothesis'";
+  EXPECT_EQ(pair["omega"], pair["hypotheses"][0]["omega"]) << "omega is the best hypothesis'";
+  EXPECT_EQ(pair["overlap_cells"], pair["hypotheses"][0]["overlap_cells"]);
+  EXPECT_EQ(pair["wall_agreement"], pair["hypotheses"][0]["wall_agreement"]);
 
   json& t = report["timing_ms"];
   EXPECT_LE(t["load"].get<double>() + t["pairs"].get<double>() + t["refine"].get<double>() +

@@ -33,11 +33,10 @@ TEST(PreparedMapTest, SharedWorkGivesEveryPairItsOwnAnswer) {
   for (const PairOutcome& pair : shared) {
     const OccupancyGrid& a = fleet.maps[pair.a];
     const OccupancyGrid& b = fleet.maps[pair.b];
-    const std::vector<CellHypothesis> own = RankedCellHypotheses(a, b, options);
+    const std::vector<CellHypothesis> own = RankedCellHypotheses(a, b, options).hypotheses;
     ASSERT_EQ(pair.hypotheses.size(), own.size()) << pair.a << "-" << pair.b;
     for (std::size_t k = 0; k < own.size(); ++k) {
-      // The fleet may promote a tied hypothesis with better walls to the front; every other
-      // one keeps its place, and all are exactly the pair's own numbers.
+      // The same hypotheses, exactly the pair's own numbers.
       const auto same = [&](const PairHypothesis& h) {
         const Pose2 T = MapPoseFromCellPose(a.geometry(), b.geometry(), own[k].T_ga_gb);
         return h.omega == own[k].omega && h.T_a_b.x_m() == T.x_m() && h.T_a_b.y_m() == T.y_m() &&

@@ -44,6 +44,29 @@ TEST(WeakBridges, OnlyBridgesBelowTheStandardAreNamed) {
   EXPECT_FALSE(WeakestBridge(4, pairs, kStandard).has_value()) << "1-2 is a two-map component";
 }
 
+TEST(AmbiguousEdges, StandOnlyWhenACycleOrAnotherPairConfirmsThem) {
+  // A triangle 0-1-2 and a pendant 2-3; edges 0-1 (in the cycle) and 2-3 (a bridge) ambiguous.
+  std::vector<PairOutcome> pairs = {Edge(0, 1, 0.95), Edge(1, 2, 0.95), Edge(0, 2, 0.95),
+                                    Edge(2, 3, 0.95)};
+  pairs[0].ambiguous = pairs[3].ambiguous = true;
+  // No verdicts: the cycle confirms 0-1, nothing confirms the bridge 2-3.
+  EXPECT_EQ(UnconfirmedAmbiguousEdge(4, pairs, {}), 3);
+  // The bridge's own pair judged agreeing is no confirmation; a cross pair 1-3 that disagrees
+  // neither; one that agrees is.
+  EXPECT_EQ(UnconfirmedAmbiguousEdge(4, pairs, {{2, 3, true, 0.95}, {1, 3, false, 0.4}}), 3);
+  EXPECT_FALSE(UnconfirmedAmbiguousEdge(4, pairs, {{1, 3, true, 0.95}}).has_value());
+  // An edge on another hypothesis was chosen by its cycles; a rejected one is no edge.
+  pairs[3].edge_hypothesis = 1;
+  EXPECT_FALSE(UnconfirmedAmbiguousEdge(4, pairs, {}).has_value());
+  pairs[3].edge_hypothesis = 0;
+  pairs[3].accepted = false;
+  EXPECT_FALSE(UnconfirmedAmbiguousEdge(4, pairs, {}).has_value());
+  // Open the cycle: 0-1 is a bridge now, and a two-map pair alone has nothing to confirm it.
+  pairs[2].accepted = false;
+  EXPECT_EQ(UnconfirmedAmbiguousEdge(4, pairs, {}), 0);
+  EXPECT_EQ(UnconfirmedAmbiguousEdge(2, {pairs[0]}, {}), 0);
+}
+
 TEST(WeakBridges, TwoMapComponentsAreExempt) {
   // Maps 0-1 alone and 2-3-4 in a chain, all below the standard: only the chain's edges count.
   std::vector<PairOutcome> pairs = {Edge(0, 1, 0.80), Edge(2, 3, 0.86), Edge(3, 4, 0.85)};

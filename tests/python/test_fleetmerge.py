@@ -60,6 +60,10 @@ def test_pair_equals_cli_json(a, b):
     for h, e in zip(got, expected["hypotheses"]):
         # JSON prints doubles with round-trip precision: the numbers are the very same.
         assert (h.x, h.y, h.yaw, h.omega) == (e["x"], e["y"], e["yaw"], e["omega"])
+        assert (h.overlap_cells, h.wall_agreement) == (e["overlap_cells"], e["wall_agreement"])
+    assert got.ambiguous == expected["ambiguous"]
+    assert got.margin == expected["margin"] or (math.isinf(got.margin) and expected["margin"] is None)
+    assert len(got.hypotheses) == len(got) and got[-1].omega == got.hypotheses[-1].omega
     # Maps in memory give what their files give.
     in_memory = fleetmerge.pair(fleetmerge.load_map(real(a)), fleetmerge.load_map(real(b)), n=5)
     assert [(h.x, h.y, h.yaw, h.omega) for h in in_memory] == \

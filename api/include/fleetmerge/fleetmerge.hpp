@@ -102,19 +102,41 @@ struct Options {
   double octree_band_max = 1.8;
 };
 
-// One transformation of b's map frame into a's: the pose of b's frame in a's frame, and its
-// acceptance index omega (Eq. 1 of Carpin's paper, 0..1).
+// One transformation of b's map frame into a's: the pose of b's frame in a's frame, its
+// acceptance index omega (Eq. 1 of Carpin's paper, 0..1) and the evidence behind it.
 struct Hypothesis {
   double x = 0.0;
   double y = 0.0;
   double yaw = 0.0;
   double omega = 0.0;
+  std::int64_t overlap_cells = 0;  // cells known in both maps under this pose
+  double wall_agreement = 0.0;     // share of walls landing near walls, the worse of both ways
 };
 
-// The hypotheses that overlay map b on map a, best (highest omega) first, at most
-// options.hypotheses of them: what `fleetmerge pair --json -n N a b` prints. Maps of different
-// resolutions are compared at the finer one. Empty when a map has no occupied cell.
-std::vector<Hypothesis> Pair(const Map& a, const Map& b, const Options& options = {});
+// A pair's hypotheses, best first, and how decisively the best won. It iterates (and indexes)
+// its hypotheses.
+struct PairHypotheses {
+  std::vector<Hypothesis> hypotheses;
+  // The best's lead in evidence over the runner-up, in nats (ln of the likelihood ratio of the
+  // two poses); +infinity without a runner-up.
+  double margin = 0.0;
+  // The runner-up is a different pose that the maps cannot tell apart from the best: the answer
+  // is a coin toss (a repetitive building); confirm it another way (a third map, a prior).
+  bool ambiguous = false;
+
+  auto begin() const { return hypotheses.begin(); }
+  auto end() const { return hypotheses.end(); }
+  std::size_t size() const { return hypotheses.size(); }
+  bool empty() const { return hypotheses.empty(); }
+  const Hypothesis& front() const { return hypotheses.front(); }
+  const Hypothesis& operator[](std::size_t k) const { return hypotheses[k]; }
+};
+
+// The hypotheses that overlay map b on map a, best first, at most options.hypotheses of them:
+// what `fleetmerge pair --json -n N a b` prints. Ranked by their evidence among those tied on
+// omega (docs/method.md). Maps of different resolutions are compared at the finer one. Empty
+// when a map has no occupied cell.
+PairHypotheses Pair(const Map& a, const Map& b, const Options& options = {});
 
 // Where one map went.
 struct MapPlacement {

@@ -1,0 +1,68 @@
+#include "core/pose_evidence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/wall_agreement.hpp"
+
+namespace fleetmerge {
+namespace {
+
+// What a right pose gives: omega 0.97-0.99 and wall agreement 0.83-1.00 on real maps
+// (docs/method.md); the lower ends, so that a right pose of two SLAM runs that agree less is not
+// scored as chance.
+constexpr double kRightCellAgreement = 0.97;
+constexpr double kRightWallAgreement = 0.9;
+// Cells of a 3 x 3 neighbourhood: one roughly independent observation.
+constexpr double kCellsPerObservation = 9.0;
+
+// ln-likelihood ratio of `hits` successes in `trials` under rate q against chance rate p. The
+// chance rate is kept off 0 and 1 (a map of walls only, or of free space only) and below q, so
+// that agreement is never evidence against the pose.
+double LogRatio(double hits, double trials, double q, double p) {
+  p = std::clamp(p, 0.01, q - 0.01);
+  return hits * std::log(q / p) + (trials - hits) * std::log((1.0 - q) / (1.0 - p));
+}
+
+}  // namespace
+
+double MeasureEvidence(const MapFeatures& a, const MapFeatures& b, CellHypothesis& h) {
+  const WallCount b_on_a = CountWalls(a.grid, a.near_walls, b.occupied, h.T_ga_gb);
+  const WallCount a_on_b = CountWalls(b.grid, b.near_walls, a.occupied, h.T_ga_gb.inverse());
+  h.wall_agreement = std::min(b_on_a.share(), a_on_b.share());  // SymmetricWallAgreement
+  const double o_a = a.occupied_share, o_b = b.occupied_share;
+  const double chance_cell_agreement = o_a * o_b + (1.0 - o_a) * (1.0 - o_b);
+  const double overlap = static_cast<double>(h.overlap_cells);
+  const double nats =
+      LogRatio(h.omega * overlap, overlap, kRightCellAgreement, chance_cell_agreement) +
+      LogRatio(b_on_a.near_wall, b_on_a.on_known, kRightWallAgreement, a.near_wall_share) +
+      LogRatio(a_on_b.near_wall, a_on_b.on_known, kRightWallAgreement, b.near_wall_share);
+  return nats / kCellsPerObservation;
+}
+
+RankedHypotheses RankByEvidence(const MapFeatures& a, const MapFeatures& b,
+                                std::vector<CellHypothesis> sorted,
+                                std::int64_t min_overlap_cells) {
+  RankedHypotheses ranked;
+  ranked.margin_nats = std::numeric_limits<double>::infinity();
+  for (CellHypothesis& h : sorted) h.evidence_nats = MeasureEvidence(a, b, h);
+  if (sorted.empty()) return ranked;
+  // The tie: hypotheses with enough overlap within kOmegaTie of the best (SortHypotheses puts
+  // those with enough overlap first, highest omega first).
+  const double best_omega = sorted.front().omega;
+  const auto tied_end = std::find_if(sorted.begin(), sorted.end(), [&](const CellHypothesis& h) {
+    return h.overlap_cells < min_overlap_cells || h.omega < best_omega - kOmegaTie;
+  });
+  std::stable_sort(sorted.begin(), tied_end, [](const CellHypothesis& l, const CellHypothesis& r) {
+    return l.evidence_nats > r.evidence_nats;
+  });
+  if (sorted.size() >= 2) {
+    ranked.margin_nats = sorted[0].evidence_nats - sorted[1].evidence_nats;
+    ranked.ambiguous = tied_end - sorted.begin() >= 2 && ranked.margin_nats < kAmbiguousMarginNats;
+  }
+  ranked.hypotheses = std::move(sorted);
+  return ranked;
+}
+
+}  // namespace fleetmerge
