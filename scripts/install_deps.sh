@@ -11,7 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libcli11-dev
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests
-  libbz2-dev liblz4-dev libzstd-dev libsqlite3-dev  # bag readers (io/ros1_bag, mcap, db3)
+  libbz2-dev liblz4-dev libzstd-dev libsqlite3-dev  # bag readers (rosbag/: ROS 1, MCAP, db3)
   python3-rosbag python3-nav-msgs python3-geometry-msgs python3-std-msgs  # ROS 1 bag fixtures
   zstd  # tests/data/bags/make_bags.py --message-zstd (rosbag2 MESSAGE compression fixtures)
   clang libclang-rt-14-dev  # scripts/fuzz.sh: clang 14 and its libFuzzer/sanitizer runtimes
