@@ -48,6 +48,8 @@ double MeasureEvidence(const MapFeatures& a, const MapFeatures& b, CellHypothesi
 struct RankedHypotheses {
   std::vector<CellHypothesis> hypotheses;  // best first
   // Evidence of the best minus that of the runner-up (nats); +infinity without a runner-up.
+  // Negative only when the runner-up is clearly worse on omega (beyond kOmegaTie) but has more
+  // evidence, e.g. a larger overlap that agrees less: omega decided that pair.
   double margin_nats = 0.0;
   bool ambiguous = false;  // the runner-up, a different pose, is tied with the best
 };

@@ -118,7 +118,8 @@ struct Hypothesis {
 struct PairHypotheses {
   std::vector<Hypothesis> hypotheses;
   // The best's lead in evidence over the runner-up, in nats (ln of the likelihood ratio of the
-  // two poses); +infinity without a runner-up.
+  // two poses); +infinity without a runner-up; negative when the runner-up is clearly worse on
+  // omega (the paper's ranking decided) yet has more evidence.
   double margin = 0.0;
   // The runner-up is a different pose that the maps cannot tell apart from the best: the answer
   // is a coin toss (a repetitive building); confirm it another way (a third map, a prior).
