@@ -2,7 +2,9 @@
 // either no result set or one complete, loadable set (manifest, report.json that parses, every
 // merged map loads), an old complete set must survive a killed rerun unchanged, and what killed
 // runs leave beside the folder must not break the next run. Seeded: the kill delays are
-// reproducible; about 25 runs of a two-map job (~5-10 s on this 2-core machine).
+// reproducible; about 25 runs of a two-map job (~5-10 s on this 2-core machine). Also runs
+// writing one folder at once (they take turns under the folder's lock, io/folder_lock.hpp) and a
+// run killed while holding that lock (~7 s more).
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
