@@ -175,10 +175,14 @@ TEST_F(MergeKillTest, OutputIsNoneOrCompleteAndOldResultsSurvive) {
             << " replaced by the complete new set\n";
 }
 
+// The lock's tests are their own suite: scripts/test_sanitizers.sh skips MergeKillTest.* (kills
+// at other moments), not these.
+class MergeLockTest : public MergeKillTest {};
+
 // Issue 22's daily jobs: several `merge --force` runs into one output folder at once. Each takes
 // the folder's lock (io/folder_lock.hpp) before touching anything beside it, so they take turns:
 // all succeed, one complete set is left and nothing beside it.
-TEST_F(MergeKillTest, ConcurrentForcedRunsIntoOneFolderTakeTurns) {
+TEST_F(MergeLockTest, ConcurrentForcedRunsIntoOneFolderTakeTurns) {
   constexpr int kRuns = 4;
   std::vector<std::string> args = Args(false);
   args.insert(args.begin() + 1, "--force");
@@ -218,7 +222,7 @@ TEST_F(MergeKillTest, ConcurrentForcedRunsIntoOneFolderTakeTurns) {
 
 // With --lock-wait 0 a run finding the folder in use fails at once, naming the folder and the
 // job holding it, and touches nothing.
-TEST_F(MergeKillTest, LockWaitZeroFailsAtOnceNamingTheHolder) {
+TEST_F(MergeLockTest, LockWaitZeroFailsAtOnceNamingTheHolder) {
   FullRun(false);
   const std::map<std::string, std::string> old_set = Snapshot(out_);
   std::vector<std::string> args = Args(false);
@@ -268,7 +272,7 @@ TEST_F(MergeKillTest, LockWaitZeroFailsAtOnceNamingTheHolder) {
 
 // A run killed with SIGKILL while it holds the folder's lock (mid-merge) leaves its lock file,
 // which does not block the next run, even with --lock-wait 0.
-TEST_F(MergeKillTest, RunKilledHoldingTheLockDoesNotBlock) {
+TEST_F(MergeLockTest, RunKilledHoldingTheLockDoesNotBlock) {
   const fs::path lock_file = FolderLockPath(out_);
   bool killed_holding = false;
   for (int attempt = 0; attempt < 10 && !killed_holding; ++attempt) {
