@@ -13,7 +13,7 @@
 // the path's new file, so two processes never both hold the lock.
 //
 // flock(2) works between processes on one machine and, on Linux NFS clients, across machines
-// (the client maps it to an NFS byte-range lock).
+// (the client maps it to an NFS byte-range lock; not tested here).
 #pragma once
 
 #include <filesystem>
