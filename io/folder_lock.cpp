@@ -24,6 +24,8 @@ constexpr const char* kLockHeader = "fleetmerge folder lock v1";
 constexpr const char* kLockTag = ".fleetmerge-lock";
 // How often a waiting process retries: short next to a job (seconds), long next to a flock call.
 constexpr auto kRetryPeriod = std::chrono::milliseconds(100);
+// Longer waits (up to infinity) are cut to this, which the clock's nanoseconds still hold.
+constexpr double kLongestWaitS = 1e9;
 
 bool StartsWith(const std::string& text, const std::string& prefix) {
   return text.compare(0, prefix.size(), prefix) == 0;
@@ -131,9 +133,10 @@ FolderLock::FolderLock(const fs::path& folder, const std::string& job, double wa
                        const std::string& label, const WaitNotice& notice)
     : path_(FolderLockPath(folder)) {
   const std::string folder_name = Normalised(folder).string();
+  const double bounded_wait_s = wait_s > 0 ? std::min(wait_s, kLongestWaitS) : 0.0;  // NaN: 0
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                            std::chrono::duration<double>(std::max(0.0, wait_s)));
+                            std::chrono::duration<double>(bounded_wait_s));
   bool announced = false;
   for (;;) {
     const int fd = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
