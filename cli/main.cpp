@@ -80,6 +80,12 @@ int main(int argc, char** argv) {
   merge_app->add_flag("--force", merge.force,
                       "replace an output folder that holds the results of another job");
   merge_app
+      ->add_option("--lock-wait", merge.lock_wait_s,
+                   "seconds to wait for another job writing the same output folder (0: fail at "
+                   "once)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  merge_app
       ->add_option("--max-map-cells", merge.options.max_map_cells,
                    "refuse map images with more cells (checked before decoding)")
       ->check(CLI::PositiveNumber)

@@ -10,108 +10,116 @@
 #include <string>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "io/job_file.hpp"
 #include "pipeline/job_run.hpp"
-#include "core/parallel.hpp"
 
-    namespace fleetmerge {
-  namespace {
+namespace fleetmerge {
+namespace {
 
-  using Clock = std::chrono::steady_clock;
+using Clock = std::chrono::steady_clock;
 
-  // "about 12 s left" for a stage `done` of `total` into it since `start`: its mean time per unit
-  // of work so far times the units left (pairs differ in cost, so this is a rough guide).
-  std::string TimeLeft(Clock::time_point start, int done, int total) {
-    if (done <= 0 || done >= total) return "";
-    const double seconds = MillisecondsSince(start) / 1000.0 * (total - done) / done;
-    char text[48];
-    std::snprintf(text, sizeof text, seconds < 10 ? "about %.1f s left" : "about %.0f s left",
-                  seconds);
-    return text;
-  }
+// "about 12 s left" for a stage `done` of `total` into it since `start`: its mean time per unit
+// of work so far times the units left (pairs differ in cost, so this is a rough guide).
+std::string TimeLeft(Clock::time_point start, int done, int total) {
+  if (done <= 0 || done >= total) return "";
+  const double seconds = MillisecondsSince(start) / 1000.0 * (total - done) / done;
+  char text[48];
+  std::snprintf(text, sizeof text, seconds < 10 ? "about %.1f s left" : "about %.0f s left",
+                seconds);
+  return text;
+}
 
-  // A bar redrawn in place on a terminal; otherwise a line per stage about every quarter of its
-  // work and at its end. Before its end a stage also shows the time it has left.
-  ProgressFn MakeProgress(const std::string& job, bool quiet, std::ostream& err) {
-    if (quiet) return {};
-    const bool terminal = isatty(fileno(stderr)) != 0;
-    // The stage being timed, when it started (the previous stage's last call, or now for the
-    // first) and the last call (progress calls are serialised by the caller).
-    struct Timing {
-      std::string stage;
-      Clock::time_point stage_start = Clock::now(), last_call = Clock::now();
+// A bar redrawn in place on a terminal; otherwise a line per stage about every quarter of its
+// work and at its end. Before its end a stage also shows the time it has left.
+ProgressFn MakeProgress(const std::string& job, bool quiet, std::ostream& err) {
+  if (quiet) return {};
+  const bool terminal = isatty(fileno(stderr)) != 0;
+  // The stage being timed, when it started (the previous stage's last call, or now for the
+  // first) and the last call (progress calls are serialised by the caller).
+  struct Timing {
+    std::string stage;
+    Clock::time_point stage_start = Clock::now(), last_call = Clock::now();
+  };
+  auto timing = std::make_shared<Timing>();
+  return [job, terminal, &err, timing](const std::string& stage, int done, int total) {
+    if (timing->stage != stage) timing->stage = stage, timing->stage_start = timing->last_call;
+    timing->last_call = Clock::now();
+    const std::string left = TimeLeft(timing->stage_start, done, total);
+    if (terminal) {
+      const int width = 30, filled = total > 0 ? width * done / total : width;
+      err << "\r" << job << " " << stage << " [" << std::string(filled, '#')
+          << std::string(width - filled, ' ') << "] " << done << "/" << total
+          << (left.empty() ? "" : ", " + left) << "    " << (done == total ? "\n" : "")
+          << std::flush;
+    } else if (done == total || (total >= 4 && done % ((total + 3) / 4) == 0)) {
+      err << job << ": " << stage << " " << done << "/" << total
+          << (left.empty() ? "" : " (" + left + ")") << "\n"
+          << std::flush;
+    }
+  };
+}
+
+// Runs one job (pipeline/job_run.hpp) and prints its one-line summary.
+void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, std::ostream& out,
+                    std::ostream& err) {
+  JobRunOptions options;
+  options.force = force;
+  options.lock_wait_s = lock_wait_s;
+  if (!quiet) {
+    options.lock_notice = [&job, lock_wait_s, &err](const std::string& holder) {
+      err << job.name << ": waiting up to " << lock_wait_s << " s for output folder "
+          << job.output_dir.string() << ", in use by " << holder << "\n"
+          << std::flush;
     };
-    auto timing = std::make_shared<Timing>();
-    return [job, terminal, &err, timing](const std::string& stage, int done, int total) {
-      if (timing->stage != stage) timing->stage = stage, timing->stage_start = timing->last_call;
-      timing->last_call = Clock::now();
-      const std::string left = TimeLeft(timing->stage_start, done, total);
-      if (terminal) {
-        const int width = 30, filled = total > 0 ? width * done / total : width;
-        err << "\r" << job << " " << stage << " [" << std::string(filled, '#')
-            << std::string(width - filled, ' ') << "] " << done << "/" << total
-            << (left.empty() ? "" : ", " + left) << "    " << (done == total ? "\n" : "")
-            << std::flush;
-      } else if (done == total || (total >= 4 && done % ((total + 3) / 4) == 0)) {
-        err << job << ": " << stage << " " << done << "/" << total
-            << (left.empty() ? "" : " (" + left + ")") << "\n"
-            << std::flush;
-      }
-    };
   }
+  options.progress = MakeProgress(job.name, quiet, err);
+  const JobOutcome outcome = RunJob(job, options);
+  const FleetResult& result = outcome.result;
+  int merged = 0;
+  for (const auto& c : result.components) merged += c.merged.has_value();
+  out << job.name << ": " << job.maps.size() << " maps, " << result.components.size()
+      << " component(s), " << merged
+      << " merged map(s); report: " << (job.output_dir / "report.json").string() << " ("
+      << static_cast<int>(outcome.report["timing_ms"]["total"].get<double>()) << " ms)\n";
+}
 
-  // Runs one job (pipeline/job_run.hpp) and prints its one-line summary.
-  void RunAndPrintJob(const Job& job, bool quiet, bool force, std::ostream& out,
-                      std::ostream& err) {
-    JobRunOptions options;
-    options.force = force;
-    options.progress = MakeProgress(job.name, quiet, err);
-    const JobOutcome outcome = RunJob(job, options);
-    const FleetResult& result = outcome.result;
-    int merged = 0;
-    for (const auto& c : result.components) merged += c.merged.has_value();
-    out << job.name << ": " << job.maps.size() << " maps, " << result.components.size()
-        << " component(s), " << merged
-        << " merged map(s); report: " << (job.output_dir / "report.json").string() << " ("
-        << static_cast<int>(outcome.report["timing_ms"]["total"].get<double>()) << " ms)\n";
-  }
+}  // namespace
 
-  }  // namespace
-
-  Job JobFromMapList(const MergeCommand& command) {
-    Job job = MapListJob(command.inputs, *command.out_dir, command.reference, command.options,
+Job JobFromMapList(const MergeCommand& command) {
+  Job job = MapListJob(command.inputs, *command.out_dir, command.reference, command.options,
                        command.topics);
   job.tf_parent_frame = command.tf_parent_frame;
   job.tf_child_frame = command.tf_child_frame;
   return job;
-  }
+}
 
-  int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::ostream& err,
-              bool force) {
-    int failed = 0;
-    for (const Job& job : jobs) {
-      try {
-        RunAndPrintJob(job, quiet, force, out, err);
-      } catch (const std::exception& e) {  // Error, filesystem_error, bad_alloc, cv::Exception
-        ++failed;
-        err << "fleetmerge: job '" << job.name << "' failed: " << e.what() << "\n";
-      }
+int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::ostream& err,
+            bool force, double lock_wait_s) {
+  int failed = 0;
+  for (const Job& job : jobs) {
+    try {
+      RunAndPrintJob(job, quiet, force, lock_wait_s, out, err);
+    } catch (const std::exception& e) {  // Error, filesystem_error, bad_alloc, cv::Exception
+      ++failed;
+      err << "fleetmerge: job '" << job.name << "' failed: " << e.what() << "\n";
     }
-    if (failed > 0) err << "fleetmerge: " << failed << " of " << jobs.size() << " job(s) failed\n";
-    return failed > 0 ? 1 : 0;
   }
+  if (failed > 0) err << "fleetmerge: " << failed << " of " << jobs.size() << " job(s) failed\n";
+  return failed > 0 ? 1 : 0;
+}
 
-  int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream& err) {
-    std::vector<Job> jobs;
-    if (command.out_dir) {
-      jobs.push_back(JobFromMapList(command));
-    } else {
-      // Every job file is validated before any job runs.
-      for (const auto& file : command.inputs) {
-        for (Job& job : LoadJobFile(file)) jobs.push_back(std::move(job));
-      }
+int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream& err) {
+  std::vector<Job> jobs;
+  if (command.out_dir) {
+    jobs.push_back(JobFromMapList(command));
+  } else {
+    // Every job file is validated before any job runs.
+    for (const auto& file : command.inputs) {
+      for (Job& job : LoadJobFile(file)) jobs.push_back(std::move(job));
     }
-    return RunJobs(jobs, command.quiet, out, err, command.force);
   }
+  return RunJobs(jobs, command.quiet, out, err, command.force, command.lock_wait_s);
+}
 
 }  // namespace fleetmerge

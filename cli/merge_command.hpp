@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "io/result_folder.hpp"
 #include "job/job.hpp"
 
 namespace fleetmerge {
@@ -21,8 +22,9 @@ struct MergeCommand {
   std::string tf_parent_frame = "map";           // with --out: transforms' frames
   std::string tf_child_frame = "{name}/map";
   bool quiet = false;
-  bool force = false;    // replace an output folder holding another job's results
-  FleetOptions options;  // with --out
+  bool force = false;  // replace an output folder holding another job's results
+  double lock_wait_s = kDefaultOutputLockWaitS;  // for another job writing the same folder
+  FleetOptions options;                          // with --out
 };
 
 // The job described by `--out DIR a.yaml b.yaml ...`.
@@ -30,10 +32,11 @@ Job JobFromMapList(const MergeCommand& command);
 
 // Runs the jobs in order; a failing job is reported on `err` and the others still run. Each
 // job's output folder is replaced as a whole, only by a complete new result set
-// (io/result_folder.hpp); `force` lets a job replace the results of another job.
+// (io/result_folder.hpp); `force` lets a job replace the results of another job. A job whose
+// folder another process is writing waits up to `lock_wait_s` for it (0: fails at once).
 // Returns 0 when every job ran (whatever got merged), 1 otherwise.
 int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::ostream& err,
-            bool force = false);
+            bool force = false, double lock_wait_s = kDefaultOutputLockWaitS);
 
 int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream& err);
 

@@ -65,7 +65,8 @@ bool IsInside(const fs::path& file, const fs::path& folder) {
   return !relative.empty() && *relative.begin() != "..";
 }
 
-// What killed runs leave beside the output folder: staging folders (never published: removed)
+// What killed runs leave beside the output folder (called with the folder's lock held, so no
+// running job owns any of it): staging folders (never published: removed)
 // and, after a kill inside the two-rename fallback, the old set renamed aside (put back when the
 // output folder is missing, else removed).
 void RecoverLeftovers(const fs::path& output_dir) {
@@ -192,7 +193,8 @@ ResultManifest ReadResultManifest(const fs::path& folder) {
 }
 
 ResultFolder::ResultFolder(fs::path output_dir, std::string job_id, bool force,
-                           const std::vector<fs::path>& inputs)
+                           const std::vector<fs::path>& inputs, double lock_wait_s,
+                           const FolderLock::WaitNotice& notice)
     : output_dir_(Normalised(output_dir)), job_id_(std::move(job_id)) {
   std::replace(job_id_.begin(), job_id_.end(), '\n', ' ');  // the manifest is line-based
   std::error_code ec;
@@ -201,7 +203,8 @@ ResultFolder::ResultFolder(fs::path output_dir, std::string job_id, bool force,
     throw Error(output_dir_.string() + ": cannot create the folder that holds it (" +
                 output_dir_.parent_path().string() + "): " + ec.message());
   }
-  RecoverLeftovers(output_dir_);
+  lock_.emplace(output_dir_, job_id_, lock_wait_s, "output folder", notice);
+  RecoverLeftovers(output_dir_);  // the lock is ours: nobody else is writing beside the folder
   if (fs::exists(output_dir_, ec)) {
     if (!fs::is_directory(output_dir_, ec)) {
       throw Error(output_dir_.string() + ": exists and is not a folder");

@@ -17,15 +17,27 @@
 //     are listed by their relative paths),
 //   - it holds none of the job's inputs (neither map files nor the job file), and
 //   - its manifest names the same job, or `force` is set.
+//
+// One job at a time: a ResultFolder holds the output folder's lock (io/folder_lock.hpp) from
+// before it looks at the folder until it is destroyed (after Publish, or when the job is
+// abandoned). A second job writing the same folder waits for the first to finish (up to
+// `lock_wait_s`) and then checks and replaces the first job's complete set as usual; so the
+// staging and set-aside folders found beside the output folder are always a killed run's.
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "io/folder_lock.hpp"
 
 namespace fleetmerge {
 
 inline constexpr const char* kManifestName = ".fleetmerge-job";
+// How long a job waits by default for another job writing its output folder: longer than most
+// jobs take, short enough that a hung job shows up in the daily run's log.
+inline constexpr double kDefaultOutputLockWaitS = 300;
 
 struct ResultManifest {
   std::string job_id;
@@ -38,10 +50,14 @@ ResultManifest ReadResultManifest(const std::filesystem::path& folder);
 
 class ResultFolder {
  public:
-  // Checks that `output_dir` may be replaced (see above; throws fleetmerge::Error saying why
-  // not), removes what killed earlier runs left beside it, and creates an empty staging folder.
+  // Locks `output_dir` (waiting up to `lock_wait_s` seconds, 0: not at all; `notice` is told
+  // when it waits), checks that it may be replaced (see above; throws fleetmerge::Error saying
+  // why not, or naming the job holding the lock), removes what killed earlier runs left beside
+  // it, and creates an empty staging folder.
   ResultFolder(std::filesystem::path output_dir, std::string job_id, bool force,
-               const std::vector<std::filesystem::path>& inputs);
+               const std::vector<std::filesystem::path>& inputs,
+               double lock_wait_s = kDefaultOutputLockWaitS,
+               const FolderLock::WaitNotice& notice = {});
   ResultFolder(const ResultFolder&) = delete;
   ResultFolder& operator=(const ResultFolder&) = delete;
   ~ResultFolder();  // removes the staging folder unless Publish succeeded
@@ -55,6 +71,7 @@ class ResultFolder {
 
  private:
   std::filesystem::path output_dir_;
+  std::optional<FolderLock> lock_;  // destroyed after the destructor's body removed staging_dir_
   std::filesystem::path staging_dir_;
   std::string job_id_;
   bool published_ = false;

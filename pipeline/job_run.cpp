@@ -162,7 +162,10 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
   // Checked before the work (a folder that may not be replaced fails the job now); every file
   // then goes to a staging folder, swapped in as a whole (io/result_folder.hpp).
   std::optional<ResultFolder> folder;
-  if (options.write) folder.emplace(job.output_dir, JobIdentity(job), options.force, protect);
+  if (options.write) {
+    folder.emplace(job.output_dir, JobIdentity(job), options.force, protect, options.lock_wait_s,
+                   options.lock_notice);
+  }
   std::vector<const OccupancyGrid*> grids;
   for (const auto& l : loaded) grids.push_back(&l.grid);
   JobOutcome outcome;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "io/map_io.hpp"
+#include "io/result_folder.hpp"
 #include "job/job.hpp"
 #include "pipeline/fleet_merge.hpp"
 #include "pipeline/octree_maps.hpp"
@@ -20,6 +21,10 @@ namespace fleetmerge {
 struct JobRunOptions {
   bool write = true;   // false: compute only (nothing is written, output_dir is not touched)
   bool force = false;  // replace an output folder holding another job's results
+  // Another job writing the same output folder: wait this long for it to finish (0: fail at
+  // once); `lock_notice` is told when the job starts waiting (io/result_folder.hpp).
+  double lock_wait_s = kDefaultOutputLockWaitS;
+  FolderLock::WaitNotice lock_notice;
   ProgressFn progress;
 };
 
@@ -50,7 +55,8 @@ std::string JobIdentity(const Job& job);
 // Runs `job` on its maps already loaded: loaded[m] (and octrees[m], empty for a 2-D map, or an
 // empty vector when the job has no octree) belongs to job.maps[m]. load_ms is reported as the
 // load time. Throws fleetmerge::Error (or a filesystem error) when the output folder may not be
-// replaced or a file cannot be written; the folder is then unchanged.
+// replaced, is still in use by another job after options.lock_wait_s, or a file cannot be
+// written; the folder is then unchanged.
 JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
                         const std::vector<JobOctree>& octrees, double load_ms,
                         const JobRunOptions& options = {});

@@ -2,12 +2,19 @@
 // grids without loss (the installed-package and Python tests compare its results with the CLI).
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <filesystem>
+#include <optional>
 #include <stdexcept>
+#include <string>
+#include <thread>
 
 #include "cli/merge_command.hpp"
 #include "cli/pair_command.hpp"
 #include "fleetmerge/fleetmerge.hpp"
+#include "io/folder_lock.hpp"
 #include "job/fleet_options.hpp"
+#include "tests/support/shared_data.hpp"
 
 namespace {
 
@@ -56,6 +63,36 @@ TEST(Api, EmptyMapAndBadOptionsAreInvalidArguments) {
   EXPECT_THROW(fleetmerge::Pair(map, map, options), std::invalid_argument);
   EXPECT_THROW(fleetmerge::Merge({}), std::invalid_argument);
   EXPECT_THROW(fleetmerge::LoadMap("/nonexistent/map.yaml"), std::runtime_error);
+}
+
+// Merge with an output folder writes through the CLI's result folder: it waits for another job
+// holding the folder's lock (io/folder_lock.hpp) instead of removing that job's staging folder.
+TEST(Api, MergeIntoAFolderWaitsForItsLock) {
+  namespace fs = std::filesystem;
+  const fs::path out = fleetmerge::testing::MakeTempDir("api_lock") / "out";
+  std::vector<std::int8_t> cells(40 * 30, 0);  // a free room with walls around it
+  for (int y = 0; y < 30; ++y) {
+    for (int x = 0; x < 40; ++x) {
+      if (x == 0 || y == 0 || x == 39 || y == 29) cells[y * 40 + x] = 100;
+    }
+  }
+  const fleetmerge::Map map(cells, 40, 30, 0.05);
+  std::optional<fleetmerge::FolderLock> held(std::in_place, out, "job 'test holder'", 0);
+  std::string error;
+  std::thread merge([&] {
+    try {
+      fleetmerge::Merge({map}, {}, out.string());
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(800));
+  EXPECT_FALSE(fs::exists(out)) << "Merge did not wait for the folder's lock";
+  held.reset();
+  merge.join();
+  EXPECT_EQ(error, "");
+  EXPECT_TRUE(fs::exists(out / "report.json"));
+  EXPECT_TRUE(fs::exists(out / "merged_0.yaml"));
 }
 
 }  // namespace

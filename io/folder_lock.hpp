@@ -1,0 +1,64 @@
+// One writer at a time for a folder that whole jobs replace (an output folder; later a cache).
+// Two fleetmerge runs writing one folder at once would each clean up what they take for a killed
+// run's leftovers, i.e. each other's staging folders (io/result_folder.hpp), and fail.
+//
+// The lock is a file beside the folder, `.<name>.fleetmerge-lock`, held with flock(2): the kernel
+// releases it when the holder's process ends in any way (SIGKILL included), so a killed job never
+// blocks the next one and no "stale lock" guessing is needed. The file's content (the holder's
+// pid, host, start time and job) serves only to name the holder in messages; it is never trusted
+// to decide whether the folder is locked, so a file left with a dead pid or garbage does not block.
+//
+// The holder removes the file on release. A process that locked a file the holder then removed
+// sees that its file is no longer the one at the path (device and inode differ) and retries on
+// the path's new file, so two processes never both hold the lock.
+//
+// flock(2) works between processes on one machine and, on Linux NFS clients, across machines
+// (the client maps it to an NFS byte-range lock; not tested here).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+
+namespace fleetmerge {
+
+// What a lock file says about its holder.
+struct FolderLockHolder {
+  long pid = 0;
+  std::string host;
+  std::string since_utc;  // "2026-12-02T12:30:00Z"
+  std::string job;        // the job's identity (its file and name)
+};
+
+// `.<name>.fleetmerge-lock` beside `folder` (absolute, normalised: "out/" and "./out" share it).
+std::filesystem::path FolderLockPath(const std::filesystem::path& folder);
+
+// The holder recorded in a lock file's text; nullopt unless it is well formed (the file may be
+// half written, or garbage left by anything).
+std::optional<FolderLockHolder> ParseFolderLockFile(const std::string& text);
+
+class FolderLock {
+ public:
+  // Called once, with the holder's description ("job J (pid P on HOST, since T)"), when the lock
+  // is busy and the caller is about to wait for it.
+  using WaitNotice = std::function<void(const std::string& holder)>;
+
+  // Locks `folder` (which need not exist; the folder holding it must) for `job`, waiting up to
+  // `wait_s` seconds for another holder to finish (0: not at all). Throws fleetmerge::Error
+  // "<label> X is in use by job J (pid P on HOST, since T); ..." when the wait runs out, or
+  // naming the lock file when it cannot be opened or locked.
+  FolderLock(const std::filesystem::path& folder, const std::string& job, double wait_s,
+             const std::string& label = "folder", const WaitNotice& notice = {});
+  FolderLock(const FolderLock&) = delete;
+  FolderLock& operator=(const FolderLock&) = delete;
+  ~FolderLock();  // removes the lock file and releases the lock
+
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+  int fd_ = -1;
+};
+
+}  // namespace fleetmerge
