@@ -1,5 +1,6 @@
 #include "core/pose_evidence.hpp"
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -10,12 +11,33 @@ namespace fleetmerge {
 namespace {
 
 // What a right pose gives: omega 0.97-0.99 and wall agreement 0.83-1.00 on real maps
-// (docs/method.md); the lower ends, so that a right pose of two SLAM runs that agree less is not
-// scored as chance.
-constexpr double kRightCellAgreement = 0.97;
-constexpr double kRightWallAgreement = 0.9;
+// (docs/method.md). The upper ends, so that disagreement weighs: a wrong translation in a
+// repetitive building lands many walls on walls but far more off them than a right one.
+constexpr double kRightCellAgreement = 0.99;
+constexpr double kRightWallAgreement = 0.98;
 // Cells of a 3 x 3 neighbourhood: one roughly independent observation.
 constexpr double kCellsPerObservation = 9.0;
+// The chance pose for walls: the hypothesis this many cells off along each axis (4 poses).
+constexpr double kChanceShiftCells = 4.0;
+
+// The share of `from`'s walls near `onto`'s walls when the pose is kChanceShiftCells off. The
+// rotation search has already aligned the walls' directions, so walls meet walls far more often
+// than the map's near-wall share says (along a corridor, always); a wrong translation in a
+// repetitive building then scores walls on walls "by chance" at this rate, not at that share.
+// Falls back to the share when no shifted pose lands a wall on a known cell.
+double ChanceWallRate(const OccupancyGrid& onto, const cv::Mat1b& onto_near_walls,
+                      double onto_near_wall_share, const std::vector<Eigen::Vector2f>& from,
+                      const Pose2& T_onto_from) {
+  long near = 0, judged = 0;
+  for (const Eigen::Vector2d shift :
+       {Eigen::Vector2d(kChanceShiftCells, 0.0), Eigen::Vector2d(-kChanceShiftCells, 0.0),
+        Eigen::Vector2d(0.0, kChanceShiftCells), Eigen::Vector2d(0.0, -kChanceShiftCells)}) {
+    const WallCount c = CountWalls(onto, onto_near_walls, from, Pose2(shift, 0.0) * T_onto_from);
+    near += c.near_wall;
+    judged += c.on_known;
+  }
+  return judged < kMinWallsJudged ? onto_near_wall_share : double(near) / double(judged);
+}
 
 // ln-likelihood ratio of `hits` successes in `trials` under rate q against chance rate p. The
 // chance rate is kept off 0 and 1 (a map of walls only, or of free space only) and below q, so
@@ -36,8 +58,11 @@ double MeasureEvidence(const MapFeatures& a, const MapFeatures& b, CellHypothesi
   const double overlap = static_cast<double>(h.overlap_cells);
   const double nats =
       LogRatio(h.omega * overlap, overlap, kRightCellAgreement, chance_cell_agreement) +
-      LogRatio(b_on_a.near_wall, b_on_a.on_known, kRightWallAgreement, a.near_wall_share) +
-      LogRatio(a_on_b.near_wall, a_on_b.on_known, kRightWallAgreement, b.near_wall_share);
+      LogRatio(b_on_a.near_wall, b_on_a.on_known, kRightWallAgreement,
+               ChanceWallRate(a.grid, a.near_walls, a.near_wall_share, b.occupied, h.T_ga_gb)) +
+      LogRatio(
+          a_on_b.near_wall, a_on_b.on_known, kRightWallAgreement,
+          ChanceWallRate(b.grid, b.near_walls, b.near_wall_share, a.occupied, h.T_ga_gb.inverse()));
   return nats / kCellsPerObservation;
 }
 
