@@ -519,7 +519,14 @@ TEST(JobFileConfigsTest, ExamplesLoad) {
   ASSERT_FALSE(mixed.empty());
   EXPECT_EQ(mixed[0].options.resolution_m, 0.05);
 
-  for (const auto& jobs : {four, large, mixed}) {
+  const std::vector<Job> fixed = LoadJobFile(ConfigsDir() / "fixed_base.yaml");
+  ASSERT_EQ(fixed.size(), 1u);
+  ASSERT_EQ(fixed[0].maps.size(), 4u);
+  EXPECT_TRUE(fixed[0].maps[0].fixed);
+  EXPECT_EQ(fixed[0].maps[0].T_merged_map.x_m(), 10.0);
+  EXPECT_EQ(fixed[0].reference, "site");
+
+  for (const auto& jobs : {four, large, mixed, fixed}) {
     for (const Job& job : jobs) {  // under the repository's (git-ignored) out/ folder
       EXPECT_EQ(job.output_dir.lexically_normal().parent_path(),
                 (fs::path(FLEETMERGE_SOURCE_DIR) / "out").lexically_normal())
@@ -557,7 +564,10 @@ TEST(JobFileConfigsTest, ReadmeDocumentsEveryKey) {
                           "jobs",
                           "four_robots.yaml",
                           "large_fleet.yaml",
-                          "mixed_resolutions.yaml"}) {
+                          "mixed_resolutions.yaml",
+                          "fixed",
+                          "pose",
+                          "fixed_base.yaml"}) {
     EXPECT_TRUE(Contains(readme, std::string("`") + key)) << key;
   }
 }
