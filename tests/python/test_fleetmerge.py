@@ -132,6 +132,7 @@ def test_a_fixed_map_never_moves_and_the_others_follow_it():
     # base's pose, to the pose graph's solver tolerance (the pair is now solved as robot-base).
     fixed = fleetmerge.merge([robot, base], threads=1).report
     got_base, got_robot = fixed["maps"][1]["pose"], fixed["maps"][0]["pose"]
+    assert [m["fixed"] for m in fixed["maps"]] == [False, True]
     assert (got_base["x"], got_base["y"], got_base["yaw"]) == pytest.approx(pose, abs=1e-12)
     expected = compose(pose, [free["maps"][1]["pose"][k] for k in ("x", "y", "yaw")])
     assert (got_robot["x"], got_robot["y"]) == pytest.approx(expected[:2], abs=1e-6)
