@@ -3,6 +3,7 @@
 // the same calls the `fleetmerge` command makes, so that results are the command's.
 #include "fleetmerge/fleetmerge.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -201,6 +202,15 @@ Map::Map(std::vector<std::int8_t> data, int width, int height, double resolution
   }
 }
 
+void Map::set_fixed(bool fixed, Pose2D pose) {
+  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.yaw)) {
+    throw std::invalid_argument("map '" + name_ + "': a fixed map's pose must be finite [x, y, " +
+                                "yaw] (m, m, rad)");
+  }
+  fixed_ = fixed;
+  pose_ = pose;
+}
+
 std::int8_t Map::at(int i, int j) const {
   if (i < 0 || j < 0 || i >= width_ || j >= height_) return -1;
   return data_[static_cast<std::size_t>(j) * width_ + i];
@@ -258,16 +268,25 @@ MergeResult Merge(const std::vector<Map>& maps, const Options& options,
     }
     JobMap job_map;  // in memory: no source file, no path
     job_map.name = name;
+    job_map.fixed = maps[m].fixed();
+    job_map.T_merged_map = Pose2(maps[m].pose().x, maps[m].pose().y, maps[m].pose().yaw);
     job.maps.push_back(job_map);
     LoadedMap l;
     l.grid = ToGrid(maps[m]);
     l.metadata.resolution_m = maps[m].resolution();
     loaded.push_back(std::move(l));
   }
-  job.reference = options.reference.empty() ? job.maps.front().name : options.reference;
+  const auto first_fixed =
+      std::find_if(job.maps.begin(), job.maps.end(), [](const JobMap& m) { return m.fixed; });
+  const std::string& first =
+      first_fixed != job.maps.end() ? first_fixed->name : job.maps.front().name;
+  job.reference = options.reference.empty() ? first : options.reference;
   bool found = false;
   for (const JobMap& m : job.maps) found = found || m.name == job.reference;
   Require(found, "reference '" + job.reference + "' is not one of the maps' names");
+  Require(first_fixed == job.maps.end() || job.reference == first,
+          "reference '" + job.reference + "': with fixed maps it must be the first fixed map '" +
+              first + "'");
   JobRunOptions run;
   run.write = !out_dir.empty();
   return ToResult(job, RunLoadedJob(job, loaded, {}, MillisecondsSince(start), run));

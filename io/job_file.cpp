@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <cstdint>
@@ -149,19 +150,43 @@ struct ListedMap {
   YamlField name;  // the entry itself when the name is the file's
 };
 
-// An entry: a path, or {path, name, topic}; a bag entry without `topic` lists every map topic.
+// An entry: a path, or {path, name, topic, fixed, pose}; a bag entry without `topic` lists every
+// map topic.
 struct MapEntry {
   MapInput input;
   YamlField entry;
   YamlField name;
+  bool fixed = false;
+  Pose2 T_merged_map;
 };
 
+constexpr char kPoseExpected[] = "[x, y, yaw]: a list of 3 finite numbers (m, m, rad)";
+
+// A fixed map's `pose`: its map frame in the merged frame, as map_server's `origin` is written.
+Pose2 ReadPose(const YamlField& field, const YamlErrors& errors) {
+  if (!field.value.IsSequence() || field.value.size() != 3) {
+    FailExpected(field, kPoseExpected, errors);
+  }
+  double xyz[3];
+  for (std::size_t i = 0; i < 3; ++i) {
+    const YamlField element = ListElement(field, i);
+    double value = 0.0;
+    if (!element.value.IsScalar() || element.value.Tag() == "!" ||
+        !YAML::convert<double>::decode(element.value, value) || !std::isfinite(value)) {
+      FailExpected(element, std::string("a finite number (pose is ") + kPoseExpected + ")", errors);
+    }
+    xyz[i] = value;
+  }
+  return Pose2(xyz[0], xyz[1], xyz[2]);
+}
+
 MapEntry ReadMapEntry(const YamlField& entry, const fs::path& folder, const YamlErrors& errors) {
-  const std::string expected = "a map YAML or bag path, or a mapping {path, name, topic}";
+  const std::string expected =
+      "a map YAML or bag path, or a mapping {path, name, topic, fixed, pose}";
   MapEntry listed{{}, entry, entry};
   std::string source;
   if (entry.value.IsMap()) {
-    const YamlMapping map(entry, {"path", "name", "topic"}, expected, errors);
+    const YamlMapping map(entry, {"path", "name", "topic", "fixed", "pose"}, expected, errors);
     source =
         ReadString(map.Require("path", "a map YAML or bag path"), "a map YAML or bag path", errors);
     if (auto f = map.Find("name")) {
@@ -170,6 +195,14 @@ MapEntry ReadMapEntry(const YamlField& entry, const fs::path& folder, const Yaml
     }
     if (auto f = map.Find("topic")) {
       listed.input.topics = {ReadString(*f, "a bag topic (nav_msgs/OccupancyGrid)", errors)};
+    }
+    if (auto f = map.Find("fixed")) listed.fixed = ReadBool(*f, errors);
+    if (auto f = map.Find("pose")) {
+      listed.T_merged_map = ReadPose(*f, errors);
+      if (!listed.fixed) {
+        errors.Fail(f->key, f->line,
+                    "'pose' is the pose of a fixed map; add 'fixed: true' or remove 'pose'");
+      }
     }
   } else {
     source = ReadString(entry, expected, errors);
@@ -191,6 +224,8 @@ std::vector<ListedMap> ExpandEntry(const MapEntry& entry, const YamlErrors& erro
     if (IsBagPath(path)) {
       for (JobMap& map : ExpandMapInputs({entry.input})) {
         map.name = entry.input.name;  // names are given over the whole list (ReadMaps)
+        map.fixed = entry.fixed;
+        map.T_merged_map = entry.T_merged_map;
         maps.push_back({std::move(map), Canonical(path), entry.entry, entry.name});
       }
     } else {
@@ -199,10 +234,11 @@ std::vector<ListedMap> ExpandEntry(const MapEntry& entry, const YamlErrors& erro
       } else {
         ReadMapYaml(path);
       }
-      maps.push_back({{entry.input.name, entry.input.source, path, ""},
-                      Canonical(path),
-                      entry.entry,
-                      entry.name});
+      maps.push_back(
+          {{entry.input.name, entry.input.source, path, "", entry.fixed, entry.T_merged_map},
+           Canonical(path),
+           entry.entry,
+           entry.name});
     }
   } catch (const Error& e) {
     errors.Fail(entry.entry.key, entry.entry.line, e.what());
@@ -274,12 +310,21 @@ std::vector<JobMap> ReadMaps(const YamlField& field, const fs::path& folder,
 
 std::string ReadReference(const YamlMapping& job, const std::vector<JobMap>& maps,
                           const YamlErrors& errors) {
+  // With fixed maps the merged frame is theirs: the first fixed map is the reference.
+  const auto first_fixed =
+      std::find_if(maps.begin(), maps.end(), [](const JobMap& map) { return map.fixed; });
   const std::optional<YamlField> field = job.Find("reference");
-  if (!field) return maps.front().name;
+  if (!field) return first_fixed != maps.end() ? first_fixed->name : maps.front().name;
   std::vector<std::string> names;
   for (const JobMap& map : maps) names.push_back("'" + map.name + "'");
   const std::string expected = "the name of one of the job's maps (" + JoinWords(names) + ")";
   const std::string reference = ReadString(*field, expected, errors);
+  if (first_fixed != maps.end() && reference != first_fixed->name) {
+    FailExpected(*field,
+                 "the first fixed map '" + first_fixed->name +
+                     "' (with fixed maps the merged frame is theirs), or no 'reference'",
+                 errors);
+  }
   for (const JobMap& map : maps) {
     if (map.name == reference) return reference;
   }

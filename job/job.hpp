@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pose2.hpp"
 #include "job/fleet_options.hpp"
 
 namespace fleetmerge {
@@ -15,6 +16,9 @@ struct JobMap {
   std::filesystem::path source;  // as written in the job file (reported in report.json)
   std::filesystem::path path;    // resolved: relative paths are relative to the job file's folder
   std::string topic;             // a bag's map: its nav_msgs/OccupancyGrid topic; else empty
+  // A fixed (base) map never moves: T_merged_map is its given pose in the merged frame.
+  bool fixed = false;
+  Pose2 T_merged_map;
 };
 
 struct Job {
@@ -22,7 +26,7 @@ struct Job {
   std::filesystem::path job_file;
   std::vector<JobMap> maps;
   std::filesystem::path output_dir;  // resolved like map paths
-  std::string reference;             // a map name; default the first map
+  std::string reference;             // a map name; default the first fixed map, else the first map
   // Frames of the transforms written beside report.json (pipeline/launch_files.hpp).
   std::string tf_parent_frame = "map";
   std::string tf_child_frame = "{name}/map";  // {name}: the map's name

@@ -48,11 +48,48 @@ std::vector<int> Components(int map_count, const std::vector<PairOutcome>& pairs
 
 namespace {
 
+bool IsFixed(const FixedPoses& fixed, int m) { return !fixed.empty() && fixed[m].has_value(); }
+
+// Components() with every fixed map in the component of the first one, renumbered by first map.
+std::vector<int> TiedComponents(int map_count, const std::vector<PairOutcome>& pairs,
+                                const FixedPoses& fixed) {
+  std::vector<int> component = Components(map_count, pairs);
+  int tied = -1;
+  std::vector<int> merged(map_count);
+  std::iota(merged.begin(), merged.end(), 0);
+  for (int m = 0; m < map_count; ++m) {
+    if (!IsFixed(fixed, m)) continue;
+    if (tied < 0) tied = component[m];
+    merged[component[m]] = tied;
+  }
+  std::vector<int> id(map_count, -1), out(map_count);
+  int next = 0;
+  for (int m = 0; m < map_count; ++m) {
+    const int c = merged[component[m]];
+    if (id[c] < 0) id[c] = next++;
+    out[m] = id[c];
+  }
+  return out;
+}
+
+// Poses in `reference`'s frame. When `reference` is fixed, every fixed map is held at its given
+// pose relative to it.
 std::vector<std::optional<Pose2>> Solve(int map_count, const std::vector<PairOutcome>& pairs,
-                                        int reference, const PoseGraphOptions& options) {
+                                        int reference, const PoseGraphOptions& options,
+                                        const FixedPoses& fixed) {
   const auto edges = EdgesOf(pairs);
-  return OptimizePoseGraph(SpanningTreePoses(map_count, edges, reference), edges, reference,
-                           options);
+  if (!IsFixed(fixed, reference)) {
+    return OptimizePoseGraph(SpanningTreePoses(map_count, edges, reference), edges, reference,
+                             options);
+  }
+  std::vector<std::optional<Pose2>> anchors(map_count);
+  std::vector<bool> constant(map_count, false);
+  for (int m = 0; m < map_count; ++m) {
+    if (!IsFixed(fixed, m)) continue;
+    anchors[m] = fixed[reference]->inverse() * *fixed[m];
+    constant[m] = true;
+  }
+  return OptimizePoseGraph(SpanningTreePoses(map_count, edges, anchors), edges, constant, options);
 }
 
 // Disagreement of an edge with the poses, in units of the tolerances (> 1: inconsistent).
@@ -67,8 +104,8 @@ double Violation(const PoseGraphEdge& edge, const std::vector<std::optional<Pose
 // Takes out the worst inconsistent edge of the component of `reference`; returns false when
 // every edge agrees with the poses.
 bool FixWorstEdge(int map_count, std::vector<PairOutcome>& pairs, int reference,
-                  const PoseGraphOptions& options) {
-  const auto poses = Solve(map_count, pairs, reference, options);
+                  const PoseGraphOptions& options, const FixedPoses& fixed) {
+  const auto poses = Solve(map_count, pairs, reference, options, fixed);
   int worst = -1;
   double worst_violation = 1.0;
   for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
@@ -80,7 +117,7 @@ bool FixWorstEdge(int map_count, std::vector<PairOutcome>& pairs, int reference,
   PairOutcome& pair = pairs[worst];
   const int rejected_hypothesis = pair.edge_hypothesis;
   pair.accepted = false;
-  const auto without = Solve(map_count, pairs, reference, options);
+  const auto without = Solve(map_count, pairs, reference, options, fixed);
   for (int h = 0; h < static_cast<int>(pair.hypotheses.size()); ++h) {
     if (h == rejected_hypothesis) continue;
     const PoseGraphEdge candidate{pair.a, pair.b, pair.hypotheses[h].T_a_b, 1.0};
@@ -189,22 +226,22 @@ int ComponentReference(const std::vector<int>& component_of, int c, int referenc
 }  // namespace
 
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
-                           const PoseGraphOptions& options) {
+                           const PoseGraphOptions& options, const FixedPoses& fixed) {
   FleetGraph graph;
   ResolveTriangleConflicts(map_count, pairs, options);
   // Longer cycles: solve, take out the worst edge, repeat. Each fix removes or replaces one edge,
   // so this ends; the bound is for safety.
   for (std::size_t round = 0; round <= 2 * pairs.size(); ++round) {
-    graph.component_of = Components(map_count, pairs);
+    graph.component_of = TiedComponents(map_count, pairs, fixed);
     bool changed = false;
     for (int c = 0, n = 1 + *std::max_element(graph.component_of.begin(), graph.component_of.end());
          c < n && !changed; ++c) {
       changed = FixWorstEdge(map_count, pairs, ComponentReference(graph.component_of, c, reference),
-                             options);
+                             options, fixed);
     }
     if (!changed) break;
   }
-  graph.component_of = Components(map_count, pairs);
+  graph.component_of = TiedComponents(map_count, pairs, fixed);
   const int components =
       1 + *std::max_element(graph.component_of.begin(), graph.component_of.end());
   graph.component_reference.assign(components, -1);
@@ -212,9 +249,13 @@ FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int r
   for (int c = 0; c < components; ++c) {
     const int ref = ComponentReference(graph.component_of, c, reference);
     graph.component_reference[c] = ref;
-    const auto poses = Solve(map_count, pairs, ref, options);
+    const auto poses = Solve(map_count, pairs, ref, options, fixed);
+    // The fixed maps' component has the merged frame: their reference sits at its given pose.
+    const Pose2 T_component_ref = IsFixed(fixed, ref) ? *fixed[ref] : Pose2();
     for (int m = 0; m < map_count; ++m) {
-      if (graph.component_of[m] == c && poses[m]) graph.T_component_map[m] = *poses[m];
+      if (graph.component_of[m] == c && poses[m]) {
+        graph.T_component_map[m] = T_component_ref * *poses[m];
+      }
     }
   }
   return graph;

@@ -29,9 +29,17 @@ struct FleetGraph {
 std::vector<int> Components(int map_count, const std::vector<PairOutcome>& pairs,
                             int skip_pair = -1);
 
+// Per map, its given pose in the merged frame if it is a fixed (base) map, else nullopt; empty
+// when no map is fixed.
+using FixedPoses = std::vector<std::optional<Pose2>>;
+
 // Marks pairs accepted (in `pairs`, with edge_hypothesis and notes) and returns the poses.
 // `reference` is the job's reference map; other components use their first map.
+// Fixed maps (`fixed`, `reference` then the first of them) are one component whatever the edges:
+// their given poses tie them. They are all held at their poses in the pose graph, so an edge
+// that contradicts those poses is the one that disagrees with its cycles and is rejected; the
+// fixed maps' component has the merged frame (T_component_map of a fixed map is its pose).
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
-                           const PoseGraphOptions& options);
+                           const PoseGraphOptions& options, const FixedPoses& fixed = {});
 
 }  // namespace fleetmerge

@@ -133,10 +133,46 @@ OccupancyGrid CompositeComponent(const std::vector<const OccupancyGrid*>& maps,
 
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
                        const FleetOptions& options, const ProgressFn& progress) {
+  return MergeFleet(maps, reference, FixedPoses{}, options, progress);
+}
+
+namespace {
+
+void CheckFixed(const FixedPoses& fixed, std::size_t map_count, int reference) {
+  if (fixed.empty()) return;
+  if (fixed.size() != map_count) {
+    throw Error("fixed map poses: " + std::to_string(fixed.size()) + " given for " +
+                std::to_string(map_count) + " maps (one per map, or none)");
+  }
+  int first = -1;
+  for (std::size_t m = 0; m < fixed.size(); ++m) {
+    if (!fixed[m]) continue;
+    if (first < 0) first = static_cast<int>(m);
+    const Pose2& T = *fixed[m];
+    if (!std::isfinite(T.x_m()) || !std::isfinite(T.y_m()) || !std::isfinite(T.yaw_rad())) {
+      std::ostringstream what;
+      what << "map " << m + 1 << " (in job order) is fixed with a non-finite pose [" << T.x_m()
+           << ", " << T.y_m() << ", " << T.yaw_rad() << "]; expected finite [x, y, yaw]";
+      throw Error(what.str());
+    }
+  }
+  if (first >= 0 && reference != first) {
+    throw Error("with fixed maps the reference must be the first fixed map (map " +
+                std::to_string(first + 1) + " in job order), not map " +
+                std::to_string(reference + 1));
+  }
+}
+
+}  // namespace
+
+FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
+                       const FixedPoses& fixed, const FleetOptions& options,
+                       const ProgressFn& progress) {
   if (maps.empty()) throw Error("a fleet-merging job needs at least one map");
   if (reference < 0 || reference >= static_cast<int>(maps.size())) {
     throw Error("the reference map index is out of range");
   }
+  CheckFixed(fixed, maps.size(), reference);
   FleetResult result;
   result.resolution_m = options.resolution_m;
   if (!(result.resolution_m > 0.0)) {  // default: the finest of the maps
@@ -156,8 +192,8 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
 
   start = std::chrono::steady_clock::now();
   AcceptByThreshold(result.pairs, options);
-  FleetGraph graph =
-      SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph);
+  FleetGraph graph = SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference,
+                                     options.pose_graph, fixed);
   std::vector<MapWalls> walls;  // made once: every round judges the pairs again
   walls.reserve(result.maps.size());
   for (const OccupancyGrid& map : result.maps) walls.emplace_back(map);
@@ -179,8 +215,8 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
         CutSplit(*split, result.pairs);
       }
     }
-    graph =
-        SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph);
+    graph = SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference,
+                            options.pose_graph, fixed);
   }
   result.component_of = graph.component_of;
   result.T_component_map = graph.T_component_map;

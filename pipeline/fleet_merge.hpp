@@ -12,6 +12,7 @@
 #include "core/occupancy_grid.hpp"
 #include "job/fleet_options.hpp"
 #include "pipeline/all_pairs.hpp"
+#include "pipeline/fleet_graph.hpp"
 
 namespace fleetmerge {
 
@@ -38,5 +39,15 @@ struct FleetResult {
 // `reference` indexes `maps`. Throws fleetmerge::Error for an empty list or a bad reference.
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
                        const FleetOptions& options, const ProgressFn& progress = {});
+
+// With fixed (base) maps: `fixed` holds, per map, its given pose T_merged_map or nullopt for a
+// map that moves (empty: none is fixed). Fixed maps never move; the merged frame is theirs;
+// `reference` must be the first of them, whose cell lattice (moved by its pose) the merged map
+// keeps, so its cells come out unchanged where only it knows them. Throws fleetmerge::Error for
+// a non-finite pose, a `fixed` list of another length, or a reference that is not the first
+// fixed map.
+FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
+                       const FixedPoses& fixed, const FleetOptions& options,
+                       const ProgressFn& progress = {});
 
 }  // namespace fleetmerge

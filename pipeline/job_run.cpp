@@ -168,8 +168,14 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
   }
   std::vector<const OccupancyGrid*> grids;
   for (const auto& l : loaded) grids.push_back(&l.grid);
+  FixedPoses fixed;  // empty unless the job has a fixed (base) map
+  for (std::size_t m = 0; m < job.maps.size(); ++m) {
+    if (!job.maps[m].fixed) continue;
+    fixed.resize(job.maps.size());
+    fixed[m] = job.maps[m].T_merged_map;
+  }
   JobOutcome outcome;
-  outcome.result = MergeFleet(grids, reference, job.options, options.progress);
+  outcome.result = MergeFleet(grids, reference, fixed, job.options, options.progress);
   const FleetResult& result = outcome.result;
 
   const auto write_start = Clock::now();

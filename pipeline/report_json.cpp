@@ -52,7 +52,8 @@ nlohmann::json MakeReport(const Job& job, const FleetResult& result,
     report["maps"].push_back({{"name", job.maps[m].name},
                               {"source", job.maps[m].source.generic_string()},
                               {"component", result.component_of[m]},
-                              {"pose", PoseJson(result.T_component_map[m])}});
+                              {"pose", PoseJson(result.T_component_map[m])},
+                              {"fixed", job.maps[m].fixed}});
   }
   report["components"] = nlohmann::json::array();
   for (std::size_t c = 0; c < result.components.size(); ++c) {

@@ -1,7 +1,8 @@
 // report.json of a fleet-merging job. Other tools read it: the names below are fixed
 // (fields may be added):
 //   maps[]: name, source, component, pose {x, y, yaw} (the map frame in its component's merged
-//           frame; the component's reference map has the identity)
+//           frame; the component's reference map has the identity, a fixed map its given
+//           pose), fixed (a base map that never moves: the job's `fixed`)
 //   components[]: id, maps (names), merged_map (file name; absent for an unmerged map)
 //   pairs[]: a, b, omega (best), accepted, overlap_cells, wall_agreement (best), ambiguous,
 //            margin (nats; null without a runner-up: core/pose_evidence.hpp), hypotheses [{x,

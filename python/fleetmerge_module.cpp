@@ -22,25 +22,28 @@ namespace {
 
 [[noreturn]] void ValueError(const std::string& what) { throw py::value_error(what); }
 
-fleetmerge::Pose2D OriginFrom(const py::handle& origin) {
-  if (!py::isinstance<py::sequence>(origin) || py::isinstance<py::str>(origin)) {
-    ValueError("origin must be a sequence (x, y, yaw) of 3 finite numbers (metres, radians)");
+// `what` names the argument in messages: "origin", "pose".
+fleetmerge::Pose2D PoseFrom(const py::handle& pose, const std::string& what) {
+  if (!py::isinstance<py::sequence>(pose) || py::isinstance<py::str>(pose)) {
+    ValueError(what + " must be a sequence (x, y, yaw) of 3 finite numbers (metres, radians)");
   }
-  const auto seq = py::reinterpret_borrow<py::sequence>(origin);
+  const auto seq = py::reinterpret_borrow<py::sequence>(pose);
   if (seq.size() != 3) {
-    ValueError("origin must be (x, y, yaw): 3 numbers, got " + std::to_string(seq.size()));
+    ValueError(what + " must be (x, y, yaw): 3 numbers, got " + std::to_string(seq.size()));
   }
   double v[3];
   for (int k = 0; k < 3; ++k) {
     try {
       v[k] = seq[k].cast<double>();
     } catch (const py::cast_error&) {
-      ValueError("origin[" + std::to_string(k) + "] must be a number");
+      ValueError(what + "[" + std::to_string(k) + "] must be a number");
     }
-    if (!std::isfinite(v[k])) ValueError("origin[" + std::to_string(k) + "] must be finite");
+    if (!std::isfinite(v[k])) ValueError(what + "[" + std::to_string(k) + "] must be finite");
   }
   return {v[0], v[1], v[2]};
 }
+
+fleetmerge::Pose2D OriginFrom(const py::handle& origin) { return PoseFrom(origin, "origin"); }
 
 // A numpy int8 array, height x width, C-contiguous: OccupancyGrid's data reshaped.
 fleetmerge::Map MapFromArray(const py::handle& data, const py::handle& resolution,
@@ -107,11 +110,15 @@ PYBIND11_MODULE(_fleetmerge, m) {
 
   py::class_<fleetmerge::Map>(m, "Map")
       .def(py::init([](const py::object& data, const py::object& resolution,
-                       const py::object& origin, const std::string& name) {
-             return MapFromArray(data, resolution, origin, name);
+                       const py::object& origin, const std::string& name, bool fixed,
+                       const py::object& pose) {
+             fleetmerge::Map map = MapFromArray(data, resolution, origin, name);
+             map.set_fixed(fixed, PoseFrom(pose, "pose"));
+             return map;
            }),
            py::arg("data"), py::arg("resolution"), py::arg("origin") = py::make_tuple(0, 0, 0),
-           py::arg("name") = "")
+           py::arg("name") = "", py::kw_only(), py::arg("fixed") = false,
+           py::arg("pose") = py::make_tuple(0, 0, 0))
       .def_property_readonly("data", &ArrayOf, "cells, int8, height x width (a copy)")
       .def_property_readonly("resolution", &fleetmerge::Map::resolution)
       .def_property_readonly("origin",
@@ -119,6 +126,16 @@ PYBIND11_MODULE(_fleetmerge, m) {
       .def_property_readonly("width", &fleetmerge::Map::width)
       .def_property_readonly("height", &fleetmerge::Map::height)
       .def_property("name", &fleetmerge::Map::name, &fleetmerge::Map::set_name)
+      .def_property(
+          "fixed", &fleetmerge::Map::fixed,
+          [](fleetmerge::Map& map, bool fixed) { map.set_fixed(fixed, map.pose()); },
+          "a fixed (base) map never moves in merge: the merged frame is its frame")
+      .def_property(
+          "pose", [](const fleetmerge::Map& map) { return TupleOf(map.pose()); },
+          [](fleetmerge::Map& map, const py::object& pose) {
+            map.set_fixed(map.fixed(), PoseFrom(pose, "pose"));
+          },
+          "a fixed map's (x, y, yaw): its map frame in the merged frame")
       .def("__repr__", [](const fleetmerge::Map& map) {
         return "<fleetmerge.Map '" + map.name() + "' " + std::to_string(map.width()) + "x" +
                std::to_string(map.height()) + " @ " + std::to_string(map.resolution()) + " m>";

@@ -56,9 +56,17 @@ ceres::LossFunction* MakeLoss(const PoseGraphOptions& options) {
 std::vector<std::optional<Pose2>> SpanningTreePoses(int node_count,
                                                     const std::vector<PoseGraphEdge>& edges,
                                                     int reference) {
-  // Prim's algorithm from the reference, always taking the highest-omega edge out of the tree.
-  std::vector<std::optional<Pose2>> poses(node_count);
-  poses[reference] = Pose2();
+  std::vector<std::optional<Pose2>> anchors(node_count);
+  anchors[reference] = Pose2();
+  return SpanningTreePoses(node_count, edges, anchors);
+}
+
+std::vector<std::optional<Pose2>> SpanningTreePoses(
+    int node_count, const std::vector<PoseGraphEdge>& edges,
+    const std::vector<std::optional<Pose2>>& anchors) {
+  // Prim's algorithm from the anchors, always taking the highest-omega edge out of the tree.
+  std::vector<std::optional<Pose2>> poses = anchors;
+  poses.resize(node_count);
   using Candidate = std::pair<double, int>;  // (omega, edge index)
   std::priority_queue<Candidate> frontier;
   const auto push_edges_of = [&](int node) {
@@ -66,7 +74,9 @@ std::vector<std::optional<Pose2>> SpanningTreePoses(int node_count,
       if (edges[e].a == node || edges[e].b == node) frontier.push({edges[e].omega, -e});
     }
   };
-  push_edges_of(reference);
+  for (int node = 0; node < node_count; ++node) {
+    if (poses[node]) push_edges_of(node);
+  }
   while (!frontier.empty()) {
     const PoseGraphEdge& edge = edges[-frontier.top().second];  // ties: lowest index first
     frontier.pop();
@@ -84,6 +94,14 @@ std::vector<std::optional<Pose2>> SpanningTreePoses(int node_count,
 std::vector<std::optional<Pose2>> OptimizePoseGraph(
     const std::vector<std::optional<Pose2>>& initial, const std::vector<PoseGraphEdge>& edges,
     int reference, const PoseGraphOptions& options) {
+  std::vector<bool> constant(initial.size(), false);
+  constant[reference] = true;
+  return OptimizePoseGraph(initial, edges, constant, options);
+}
+
+std::vector<std::optional<Pose2>> OptimizePoseGraph(
+    const std::vector<std::optional<Pose2>>& initial, const std::vector<PoseGraphEdge>& edges,
+    const std::vector<bool>& constant, const PoseGraphOptions& options) {
   std::vector<std::array<double, 3>> x(initial.size());
   for (std::size_t n = 0; n < initial.size(); ++n) {
     if (initial[n]) x[n] = {initial[n]->x_m(), initial[n]->y_m(), initial[n]->yaw_rad()};
@@ -95,8 +113,14 @@ std::vector<std::optional<Pose2>> OptimizePoseGraph(
         new RelativePoseResidual(edge, options));
     problem.AddResidualBlock(cost, MakeLoss(options), x[edge.a].data(), x[edge.b].data());
   }
-  if (problem.HasParameterBlock(x[reference].data())) {
-    problem.SetParameterBlockConstant(x[reference].data());  // the gauge
+  bool gauge = false;
+  for (std::size_t n = 0; n < initial.size(); ++n) {
+    if (constant[n] && problem.HasParameterBlock(x[n].data())) {
+      problem.SetParameterBlockConstant(x[n].data());  // the gauge (and any other fixed map)
+      gauge = true;
+    }
+  }
+  if (gauge) {
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
     solver.max_num_iterations = 100;

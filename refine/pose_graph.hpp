@@ -39,10 +39,22 @@ std::vector<std::optional<Pose2>> SpanningTreePoses(int node_count,
                                                     const std::vector<PoseGraphEdge>& edges,
                                                     int reference);
 
+// The same from several anchors (fixed maps): every node with an anchor pose starts at it and
+// the tree grows from all of them at once.
+std::vector<std::optional<Pose2>> SpanningTreePoses(
+    int node_count, const std::vector<PoseGraphEdge>& edges,
+    const std::vector<std::optional<Pose2>>& anchors);
+
 // Solves the graph from `initial` (nodes without a pose are left out) with `reference` fixed.
 std::vector<std::optional<Pose2>> OptimizePoseGraph(
     const std::vector<std::optional<Pose2>>& initial, const std::vector<PoseGraphEdge>& edges,
     int reference, const PoseGraphOptions& options);
+
+// The same with every node where `constant` is true held at its initial pose (several fixed
+// maps: an edge that contradicts their given poses can only be absorbed by its own residual).
+std::vector<std::optional<Pose2>> OptimizePoseGraph(
+    const std::vector<std::optional<Pose2>>& initial, const std::vector<PoseGraphEdge>& edges,
+    const std::vector<bool>& constant, const PoseGraphOptions& options);
 
 // How far an edge's measurement is from the poses: yaw and translation of
 // T_a_b^-1 * (T_ref_a^-1 T_ref_b).

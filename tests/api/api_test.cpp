@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -49,6 +50,25 @@ TEST(Api, MapChecksItsContract) {
   EXPECT_EQ(map.at(1, 1), 100);
   EXPECT_EQ(map.at(0, 1), 50);
   EXPECT_EQ(map.at(2, 0), -1);  // outside
+}
+
+TEST(Api, FixedMapsKeepTheirPose) {
+  fleetmerge::Map base({0, 100, 0, 100}, 2, 2, 0.05, {}, "base");
+  EXPECT_FALSE(base.fixed());
+  EXPECT_THROW(base.set_fixed(true, {0.0, std::nan(""), 0.0}), std::invalid_argument);
+  EXPECT_FALSE(base.fixed());  // unchanged by the refused call
+  base.set_fixed(true, {1.5, -2.0, 0.3});
+  const fleetmerge::Map robot({100, 0, 100, 0}, 2, 2, 0.05, {}, "robot");
+  // Two maps that overlap too little to pair: each its own component; the base keeps its pose.
+  const fleetmerge::MergeResult result = fleetmerge::Merge({robot, base});
+  ASSERT_EQ(result.maps.size(), 2u);
+  EXPECT_EQ(result.maps[1].pose.x, 1.5);
+  EXPECT_EQ(result.maps[1].pose.y, -2.0);
+  EXPECT_DOUBLE_EQ(result.maps[1].pose.yaw, 0.3);
+  EXPECT_EQ(result.components[result.maps[1].component].reference, "base");  // the first fixed
+  fleetmerge::Options options;
+  options.reference = "robot";
+  EXPECT_THROW(fleetmerge::Merge({robot, base}, options), std::invalid_argument);
 }
 
 TEST(Api, EmptyMapAndBadOptionsAreInvalidArguments) {

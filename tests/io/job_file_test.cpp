@@ -375,7 +375,7 @@ TEST_F(JobFileTest, MissingKeysAndEmptyLists) {
   ExpectError("maps: maps/a.yaml\noutput: out\n", 1, "maps", "got 'maps/a.yaml'");
   ExpectError("maps:\n  - name: first\noutput: out\n", 2, "maps[0].path", "missing");
   ExpectError("maps:\n  - [maps/a.yaml]\noutput: out\n", 2, "maps[0]",
-              "expected a map YAML or bag path, or a mapping {path, name, topic}");
+              "expected a map YAML or bag path, or a mapping {path, name, topic, fixed, pose}");
   ExpectError("jobs: []\n", 1, "jobs", "expected a non-empty list of jobs");
   ExpectError("jobs: 3\n", 1, "jobs", "expected a non-empty list of jobs, got '3'");
   ExpectError("jobs:\n  - maps.yaml\n", 2, "jobs[0]", "expected a job");
@@ -403,6 +403,59 @@ TEST_F(JobFileTest, MapsOfAJobAreDistinct) {
       3, "maps[1]", "'other/../maps/./a.yaml' is the same file as maps[0] (line 2)");
   ExpectError("maps: [maps/a.yaml, maps/b.yaml]\noutput: out\nreference: c\n", 3, "reference",
               "expected the name of one of the job's maps ('a', 'b'), got 'c'");
+}
+
+TEST_F(JobFileTest, FixedMapsHaveAPoseAndAreTheReference) {
+  const std::vector<Job> jobs = Load(
+      "maps:\n  - maps/a.yaml\n  - {path: maps/b.yaml, fixed: true, pose: [12.5, -3, 0.25]}\n"
+      "  - {path: maps/c.yaml, fixed: true}\noutput: out\n");
+  ASSERT_EQ(jobs.size(), 1u);
+  const Job& job = jobs[0];
+  ASSERT_EQ(job.maps.size(), 3u);
+  EXPECT_FALSE(job.maps[0].fixed);  // default: a robot's map, which moves
+  EXPECT_TRUE(job.maps[1].fixed);
+  EXPECT_EQ(job.maps[1].T_merged_map.x_m(), 12.5);
+  EXPECT_EQ(job.maps[1].T_merged_map.y_m(), -3.0);
+  EXPECT_EQ(job.maps[1].T_merged_map.yaw_rad(), 0.25);
+  EXPECT_TRUE(job.maps[2].fixed);  // default pose: identity
+  EXPECT_EQ(job.maps[2].T_merged_map.x_m(), 0.0);
+  EXPECT_EQ(job.maps[2].T_merged_map.y_m(), 0.0);
+  EXPECT_EQ(job.maps[2].T_merged_map.yaw_rad(), 0.0);
+  EXPECT_EQ(job.reference, "b");  // the first fixed map, not the first map
+  // `fixed: false` is a robot's map; naming the first fixed map as the reference is fine.
+  const std::vector<Job> named = Load(
+      "maps:\n  - {path: maps/a.yaml, fixed: false}\n  - {path: maps/b.yaml, fixed: true}\n"
+      "output: out\nreference: b\n");
+  EXPECT_FALSE(named[0].maps[0].fixed);
+  EXPECT_EQ(named[0].reference, "b");
+}
+
+TEST_F(JobFileTest, FixedMapErrorsNameTheKey) {
+  const std::string pose = "[x, y, yaw]: a list of 3 finite numbers (m, m, rad)";
+  ExpectError(
+      "maps:\n  - maps/a.yaml\n  - {path: maps/b.yaml, fixed: true, pose: [1, .nan, 0]}\n"
+      "output: out\n",
+      3, "maps[1].pose[1]", "expected a finite number (pose is " + pose + "), got '.nan'");
+  ExpectError("maps:\n  - {path: maps/a.yaml, fixed: true, pose: [.inf, 0, 0]}\noutput: out\n", 2,
+              "maps[0].pose[0]", "got '.inf'");
+  ExpectError("maps:\n  - {path: maps/a.yaml, fixed: true, pose: [1, 2]}\noutput: out\n", 2,
+              "maps[0].pose", "expected " + pose);
+  ExpectError("maps:\n  - {path: maps/a.yaml, fixed: true, pose: [1, 2, 3, 4]}\noutput: out\n", 2,
+              "maps[0].pose", "expected " + pose);
+  ExpectError("maps:\n  - {path: maps/a.yaml, fixed: true, pose: 1}\noutput: out\n", 2,
+              "maps[0].pose", "expected " + pose + ", got '1'");
+  ExpectError("maps:\n  - {path: maps/a.yaml, fixed: true, pose: [1, '2', 0]}\noutput: out\n", 2,
+              "maps[0].pose[1]", "expected a finite number");
+  ExpectError("maps:\n  - {path: maps/a.yaml, fixed: 1}\noutput: out\n", 2, "maps[0].fixed",
+              "expected true or false, got '1'");
+  ExpectError("maps:\n  - {path: maps/a.yaml, fixed: 'true'}\noutput: out\n", 2, "maps[0].fixed",
+              "expected true or false");
+  ExpectError("maps:\n  - {path: maps/a.yaml, pose: [0, 0, 0]}\noutput: out\n", 2, "maps[0].pose",
+              "add 'fixed: true' or remove 'pose'");
+  ExpectError(
+      "maps:\n  - maps/a.yaml\n  - {path: maps/b.yaml, fixed: true}\noutput: out\n"
+      "reference: a\n",
+      5, "reference", "expected the first fixed map 'b'");
 }
 
 TEST_F(JobFileTest, JobsHaveTheirOwnOutputAndName) {
@@ -466,7 +519,14 @@ TEST(JobFileConfigsTest, ExamplesLoad) {
   ASSERT_FALSE(mixed.empty());
   EXPECT_EQ(mixed[0].options.resolution_m, 0.05);
 
-  for (const auto& jobs : {four, large, mixed}) {
+  const std::vector<Job> fixed = LoadJobFile(ConfigsDir() / "fixed_base.yaml");
+  ASSERT_EQ(fixed.size(), 1u);
+  ASSERT_EQ(fixed[0].maps.size(), 4u);
+  EXPECT_TRUE(fixed[0].maps[0].fixed);
+  EXPECT_EQ(fixed[0].maps[0].T_merged_map.x_m(), 10.0);
+  EXPECT_EQ(fixed[0].reference, "site");
+
+  for (const auto& jobs : {four, large, mixed, fixed}) {
     for (const Job& job : jobs) {  // under the repository's (git-ignored) out/ folder
       EXPECT_EQ(job.output_dir.lexically_normal().parent_path(),
                 (fs::path(FLEETMERGE_SOURCE_DIR) / "out").lexically_normal())
@@ -504,7 +564,10 @@ TEST(JobFileConfigsTest, ReadmeDocumentsEveryKey) {
                           "jobs",
                           "four_robots.yaml",
                           "large_fleet.yaml",
-                          "mixed_resolutions.yaml"}) {
+                          "mixed_resolutions.yaml",
+                          "fixed",
+                          "pose",
+                          "fixed_base.yaml"}) {
     EXPECT_TRUE(Contains(readme, std::string("`") + key)) << key;
   }
 }

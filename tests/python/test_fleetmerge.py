@@ -112,6 +112,42 @@ def test_merge_of_maps_in_memory_places_them_as_from_files():
         [p["accepted"] for p in from_files["pairs"]]
 
 
+def compose(a, b):
+    """(x, y, yaw) of a * b."""
+    c, s = math.cos(a[2]), math.sin(a[2])
+    return (a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], a[2] + b[2])
+
+
+@needs_maps
+def test_a_fixed_map_never_moves_and_the_others_follow_it():
+    base = fleetmerge.load_map(real("robotis_corridor_run2"))
+    robot = fleetmerge.load_map(real("robotis_corridor_run3"))
+    free = fleetmerge.merge([base, robot], threads=1).report  # base at identity
+    assert free["maps"][1]["component"] == free["maps"][0]["component"]
+    pose = (3.0, -1.5, 0.4)
+    base.fixed = True
+    base.pose = pose
+    assert base.fixed and base.pose == pose
+    # A fixed map need not be first. The robot's pose is the free merge's composed with the
+    # base's pose, to the pose graph's solver tolerance (the pair is now solved as robot-base).
+    fixed = fleetmerge.merge([robot, base], threads=1).report
+    got_base, got_robot = fixed["maps"][1]["pose"], fixed["maps"][0]["pose"]
+    assert [m["fixed"] for m in fixed["maps"]] == [False, True]
+    assert (got_base["x"], got_base["y"], got_base["yaw"]) == pytest.approx(pose, abs=1e-12)
+    expected = compose(pose, [free["maps"][1]["pose"][k] for k in ("x", "y", "yaw")])
+    assert (got_robot["x"], got_robot["y"]) == pytest.approx(expected[:2], abs=1e-6)
+    assert math.remainder(got_robot["yaw"] - expected[2], 2 * math.pi) == pytest.approx(0, abs=1e-6)
+    as_keywords = fleetmerge.Map(robot.data, robot.resolution, robot.origin, fixed=True,
+                                 pose=(1, 2, 3))
+    assert as_keywords.fixed and as_keywords.pose == (1, 2, 3)
+    with pytest.raises(ValueError, match=r"pose\[1\] must be finite"):
+        base.pose = (0.0, float("nan"), 0.0)
+    with pytest.raises(ValueError, match="pose must be \\(x, y, yaw\\): 3 numbers, got 2"):
+        base.pose = (0.0, 1.0)
+    with pytest.raises(ValueError, match="must be the first fixed map"):
+        fleetmerge.merge([robot, base], reference=robot.name)
+
+
 @needs_maps
 def test_merge_options_reach_the_job():
     paths = [real("robotis_corridor_run1"), real("robotis_corridor_run2")]

@@ -53,6 +53,34 @@ TEST(PoseGraph, ExactEdgesGiveExactPosesAndReferenceStaysFixed) {
   EXPECT_LT(RelativeError(poses, truth), 1e-6);
 }
 
+// Several fixed maps: every anchor keeps its pose bit for bit, also when the edges contradict
+// the anchors; a free node between two anchors that both edges agree on lands exactly there.
+TEST(PoseGraph, AnchorsKeepTheirPoses) {
+  std::vector<std::optional<Pose2>> anchors(3);
+  anchors[0] = Pose2(0.0, 0.0, 0.0);
+  anchors[2] = Pose2(2.0, 0.0, 0.5);
+  const Pose2 T_0_1(1.0, 0.0, 0.2);
+  const std::vector<PoseGraphEdge> agree = {{0, 1, T_0_1, 1.0},
+                                            {2, 1, anchors[2]->inverse() * T_0_1, 1.0}};
+  const std::vector<bool> constant = {true, false, true};
+  const auto initial = SpanningTreePoses(3, agree, anchors);
+  ASSERT_TRUE(initial[1].has_value());
+  const auto solved = OptimizePoseGraph(initial, agree, constant, PoseGraphOptions{});
+  EXPECT_NEAR((solved[1]->translation_m() - T_0_1.translation_m()).norm(), 0.0, 1e-9);
+  EXPECT_NEAR(solved[1]->yaw_rad(), T_0_1.yaw_rad(), 1e-9);
+  // An edge between the anchors 1 m off what their poses say: they do not move.
+  std::vector<PoseGraphEdge> contradict = agree;
+  contradict.push_back({0, 2, Pose2(3.0, 0.0, 0.5), 10.0});
+  const auto held = OptimizePoseGraph(initial, contradict, constant, PoseGraphOptions{});
+  for (const int n : {0, 2}) {
+    EXPECT_EQ(held[n]->x_m(), anchors[n]->x_m());
+    EXPECT_EQ(held[n]->y_m(), anchors[n]->y_m());
+    EXPECT_EQ(held[n]->yaw_rad(), anchors[n]->yaw_rad());
+  }
+  const EdgeError e = EdgeDisagreement(contradict.back(), *held[0], *held[2]);
+  EXPECT_NEAR(e.translation_m, 1.0, 1e-9);  // left to the cycle check to reject
+}
+
 TEST(PoseGraph, SpanningTreeLeavesUnconnectedNodesWithoutPose) {
   const std::vector<PoseGraphEdge> edges = {{0, 1, Pose2(1, 0, 0), 0.9}};
   const auto poses = SpanningTreePoses(3, edges, 0);

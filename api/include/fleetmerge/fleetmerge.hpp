@@ -58,6 +58,12 @@ class Map {
   // Used in merge results and report.json; LoadMap names a map after its file stem.
   const std::string& name() const { return name_; }
   void set_name(std::string name) { name_ = std::move(name); }
+  // A fixed (base) map never moves in Merge: `pose` is its map frame in the merged frame, which
+  // is its frame (job files' `fixed: true`, `pose: [x, y, yaw]`). The first fixed map is the
+  // reference. set_fixed throws std::invalid_argument, naming the map, for a non-finite pose.
+  bool fixed() const { return fixed_; }
+  const Pose2D& pose() const { return pose_; }
+  void set_fixed(bool fixed, Pose2D pose = {});
   // The cell (i, j) (column i, row j from the origin), -1 outside the map.
   std::int8_t at(int i, int j) const;
 
@@ -68,6 +74,8 @@ class Map {
   double resolution_m_ = 0.0;
   Pose2D origin_;
   std::string name_;
+  bool fixed_ = false;
+  Pose2D pose_;
 };
 
 // Reads a map_server YAML (with its PGM/PNG image), an OctoMap octree (.bt, .ot: its 2-D floor
@@ -93,9 +101,10 @@ struct Options {
   // maps from different SLAM systems, whose true walls agree less (0.83-0.88 measured)
   double min_bridge_wall_agreement = 0.89;
   std::string fusion = "log-odds";  // Merge: log-odds | max | vote
-  std::string reference;            // Merge: the reference map's name (empty: the first map)
-  int threads = 0;                  // Pair and Merge: threads (0: all cores); same results
-  bool refine = true;               // false: Carpin's hypotheses without the local refinement
+  std::string reference;  // Merge: the reference map's name (empty: the first fixed map, else the
+                          // first map; with fixed maps only the first fixed map)
+  int threads = 0;        // Pair and Merge: threads (0: all cores); same results
+  bool refine = true;     // false: Carpin's hypotheses without the local refinement
   std::string translation = "correlation";   // correlation (2-D FFT) | spectra (paper's X/Y)
   std::int64_t max_map_cells = 100'000'000;  // Merge of files: larger images are refused
   double octree_band_min = 0.3;  // Merge of octrees: floor plan height band above the floor (m)

@@ -1,0 +1,222 @@
+// Fixed base maps (MergeFleet with `fixed` poses): robots simulated in a real building are merged
+// against that building's whole map, fixed at a given non-identity pose. Asserted: the base never
+// moves, every robot lands within 1 deg and 3 cells of the truth (its T_building_map composed with
+// the base's pose), and the base's cells come out unchanged wherever no robot knows the cell.
+// With a second fixed map: one that agrees with the truth changes nothing; one placed 2 m off
+// stays where it was put, and the edges that contradict the fixed poses are what is rejected.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <opencv2/imgproc.hpp>
+#include <optional>
+#include <vector>
+
+#include "core/error.hpp"
+#include "core/resample.hpp"
+#include "io/map_io.hpp"
+#include "pipeline/composite.hpp"
+#include "pipeline/fleet_merge.hpp"
+#include "refine/pose_graph.hpp"
+#include "sim/simulation.hpp"
+#include "tests/support/shared_data.hpp"
+
+namespace fleetmerge {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// The base's pose in the merged frame: a turn that is no multiple of 90 deg and a shift.
+const Pose2 kT_merged_base(7.3, -12.1, 0.6);
+
+struct BaseCase {
+  OccupancyGrid base;  // the building's map as it is
+  SimulatedCase sim;   // robots in that building; their truth is in the base's map frame
+};
+
+BaseCase SimulateInBuilding(const char* building, int robots, std::uint32_t seed) {
+  const auto path = *testing::SharedMapsDir() / (std::string(building) + ".yaml");
+  BaseCase c{LoadMap(path).grid, {}};
+  SimulationOptions options;
+  options.robots = robots;
+  options.seed = seed;
+  options.path_length_m = 100.0;
+  c.sim = SimulateFleet({c.base, building, path.string()}, options);
+  return c;
+}
+
+// Maps in the merge's order: the base first, then the robots.
+std::vector<const OccupancyGrid*> MapsOf(const BaseCase& c) {
+  std::vector<const OccupancyGrid*> maps = {&c.base};
+  for (const OccupancyGrid& m : c.sim.maps) maps.push_back(&m);
+  return maps;
+}
+
+// Where robot r's map truly is in the merged frame.
+Pose2 TrueT_merged_robot(const BaseCase& c, int r) {
+  return kT_merged_base * c.sim.truth.maps[r].T_building_map;
+}
+
+// Yaw error and the displacement (in cells) of the centre of the robot's known cells.
+void ExpectNearTruth(const BaseCase& c, const FleetResult& result, int r, const char* what) {
+  const OccupancyGrid& robot = c.sim.maps[r];
+  const Pose2 truth = TrueT_merged_robot(c, r);
+  const Pose2& estimate = result.T_component_map[r + 1];
+  const cv::Rect known = cv::boundingRect(robot.cells());
+  const Eigen::Vector2d centre =
+      robot.geometry().CellCenter({known.x + known.width / 2, known.y + known.height / 2});
+  const double yaw_deg = std::abs(WrapAngle(estimate.yaw_rad() - truth.yaw_rad())) / kDeg;
+  const double cells =
+      (estimate * centre - truth * centre).norm() / robot.geometry().resolution_m();
+  std::printf("%s robot%d: %.3f deg, %.2f cells\n", what, r + 1, yaw_deg, cells);
+  EXPECT_EQ(result.component_of[r + 1], result.component_of[0]) << what << " robot" << r + 1;
+  EXPECT_LT(yaw_deg, 1.0) << what << " robot" << r + 1;
+  EXPECT_LT(cells, 3.0) << what << " robot" << r + 1;
+}
+
+// Robot rb relative to robot ra against the truth (whichever fixed map they followed).
+void ExpectRelativeNearTruth(const BaseCase& c, const FleetResult& result, int ra, int rb) {
+  const OccupancyGrid& robot = c.sim.maps[rb];
+  const Pose2 truth = TrueT_merged_robot(c, ra).inverse() * TrueT_merged_robot(c, rb);
+  const Pose2 estimate = result.T_component_map[ra + 1].inverse() * result.T_component_map[rb + 1];
+  const cv::Rect known = cv::boundingRect(robot.cells());
+  const Eigen::Vector2d centre =
+      robot.geometry().CellCenter({known.x + known.width / 2, known.y + known.height / 2});
+  EXPECT_EQ(result.component_of[ra + 1], result.component_of[rb + 1]);
+  EXPECT_LT(std::abs(WrapAngle(estimate.yaw_rad() - truth.yaw_rad())), 1.0 * kDeg);
+  EXPECT_LT((estimate * centre - truth * centre).norm(), 3.0 * robot.geometry().resolution_m());
+}
+
+// The base's cells as they are, on the same cells (moved by its pose), where no robot knows one.
+void ExpectBaseCellForCell(const BaseCase& c, const FleetResult& result) {
+  const FleetComponent& component = result.components[result.component_of[0]];
+  ASSERT_EQ(component.reference, 0);
+  ASSERT_TRUE(component.merged.has_value());
+  const OccupancyGrid& merged = *component.merged;
+  EXPECT_DOUBLE_EQ(merged.geometry().resolution_m(), c.base.geometry().resolution_m());
+  std::vector<OccupancyGrid> others;  // the robots' states on the merged cells
+  for (const int m : component.maps) {
+    if (m == 0) continue;
+    const OccupancyGrid& robot = c.sim.maps[m - 1];
+    const OccupancyGrid at_merged = ResampleToResolution(robot, merged.geometry().resolution_m());
+    others.push_back(SampleOnto({&at_merged, result.T_component_map[m]}, merged.geometry()));
+  }
+  std::int64_t only_base = 0, checked = 0, robots_too = 0;
+  for (int j = 0; j < c.base.height(); ++j) {
+    for (int i = 0; i < c.base.width(); ++i) {
+      if (c.base.at({i, j}) == CellState::kUnknown) continue;
+      const Eigen::Vector2d p = kT_merged_base * c.base.geometry().CellCenter({i, j});
+      const Eigen::Array2i cell = merged.geometry().CellOf(p);
+      ASSERT_TRUE(merged.geometry().Contains(cell));
+      ASSERT_LT((merged.geometry().CellCenter(cell) - p).norm(), 1e-6) << i << ", " << j;
+      ++checked;
+      bool others_unknown = true;
+      for (const OccupancyGrid& sampled : others) {
+        if (sampled.at(cell) != CellState::kUnknown) others_unknown = false;
+      }
+      if (!others_unknown) {
+        ++robots_too;
+        continue;
+      }
+      ++only_base;
+      ASSERT_EQ(merged.at(cell), c.base.at({i, j})) << "base cell " << i << ", " << j;
+    }
+  }
+  std::printf("base cells: %lld known, %lld only the base's (unchanged), %lld seen by robots\n",
+              static_cast<long long>(checked), static_cast<long long>(only_base),
+              static_cast<long long>(robots_too));
+  EXPECT_GT(only_base, 10000);  // not vacuous: much of the building is the base's alone
+  EXPECT_GT(robots_too, 0);     // and the robots were composited in
+}
+
+TEST(FixedBase, RobotsInARealBuildingLandOnItsFixedMap) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const BaseCase c = SimulateInBuilding("gdc_floor1_full", 4, 1);
+  FixedPoses fixed(1 + c.sim.maps.size());
+  fixed[0] = kT_merged_base;
+  const FleetResult result = MergeFleet(MapsOf(c), 0, fixed, FleetOptions{});
+  std::printf("pairs %.0f ms, refine %.0f ms, composite %.0f ms\n", result.timing.pairs_ms,
+              result.timing.refine_ms, result.timing.composite_ms);
+  // The base never moves: its pose is the given one, bit for bit.
+  EXPECT_EQ(result.T_component_map[0].x_m(), kT_merged_base.x_m());
+  EXPECT_EQ(result.T_component_map[0].y_m(), kT_merged_base.y_m());
+  EXPECT_EQ(result.T_component_map[0].yaw_rad(), kT_merged_base.yaw_rad());
+  for (int r = 0; r < static_cast<int>(c.sim.maps.size()); ++r) {
+    ExpectNearTruth(c, result, r, "one fixed map:");
+  }
+  ExpectBaseCellForCell(c, result);
+}
+
+TEST(FixedBase, SeveralFixedMapsNeverMove) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const BaseCase c = SimulateInBuilding("aces3_austin", 4, 2);
+  const std::vector<const OccupancyGrid*> maps = MapsOf(c);
+  FixedPoses fixed(maps.size());
+  fixed[0] = kT_merged_base;
+  // robot1 fixed where it truly is: everything agrees.
+  fixed[1] = TrueT_merged_robot(c, 0);
+  const FleetResult agree = MergeFleet(maps, 0, fixed, FleetOptions{});
+  for (int r = 1; r < static_cast<int>(c.sim.maps.size()); ++r) {
+    ExpectNearTruth(c, agree, r, "agreeing fixed maps:");
+  }
+  // robot1 fixed 2 m off its truth: both fixed maps stay exactly where they were put, the pair
+  // between them is rejected, and every edge kept agrees with the solved poses. The other robots
+  // follow whichever fixed map their surviving edges agree with (here robot1's: every edge of
+  // the base is rejected, measured); among themselves they stay right.
+  fixed[1] = TrueT_merged_robot(c, 0) * Pose2(2.0, 0.0, 0.0);
+  const FleetResult disagree = MergeFleet(maps, 0, fixed, FleetOptions{});
+  EXPECT_EQ(disagree.component_of[1], disagree.component_of[0]);  // tied by their poses
+  for (const int m : {0, 1}) {
+    EXPECT_NEAR(disagree.T_component_map[m].x_m(), fixed[m]->x_m(), 1e-9);
+    EXPECT_NEAR(disagree.T_component_map[m].y_m(), fixed[m]->y_m(), 1e-9);
+    EXPECT_NEAR(WrapAngle(disagree.T_component_map[m].yaw_rad() - fixed[m]->yaw_rad()), 0.0, 1e-12);
+  }
+  const PoseGraphOptions tolerance;
+  int accepted = 0;
+  for (const PairOutcome& p : disagree.pairs) {
+    if (p.a == 0 && p.b == 1) {
+      EXPECT_FALSE(p.accepted) << "base-robot1 contradicts their poses";
+    }
+    if (!p.accepted) continue;
+    ++accepted;
+    const PoseGraphEdge edge{p.a, p.b, p.hypotheses[p.edge_hypothesis].T_a_b, 1.0};
+    const EdgeError e =
+        EdgeDisagreement(edge, disagree.T_component_map[p.a], disagree.T_component_map[p.b]);
+    EXPECT_LE(e.yaw_rad, tolerance.max_edge_yaw_error_rad) << p.a << "-" << p.b;
+    EXPECT_LE(e.translation_m, tolerance.max_edge_translation_error_m) << p.a << "-" << p.b;
+    std::printf("disagreeing fixed maps: kept edge %d-%d (%s)\n", p.a, p.b, p.note.c_str());
+  }
+  EXPECT_GE(accepted, 3);  // the robots are still placed, not all cut loose
+  for (int ra = 1; ra < static_cast<int>(c.sim.maps.size()); ++ra) {
+    for (int rb = ra + 1; rb < static_cast<int>(c.sim.maps.size()); ++rb) {
+      ExpectRelativeNearTruth(c, disagree, ra, rb);
+    }
+  }
+}
+
+TEST(FixedBase, BadFixedPosesAreRefused) {
+  OccupancyGrid a(GridGeometry(0.05, {4, 4}));
+  OccupancyGrid b(GridGeometry(0.05, {4, 4}));
+  const std::vector<const OccupancyGrid*> maps = {&a, &b};
+  FixedPoses nan_pose(2);
+  nan_pose[1] = Pose2(0.0, std::nan(""), 0.0);
+  EXPECT_THROW(
+      {
+        try {
+          MergeFleet(maps, 1, nan_pose, FleetOptions{});
+        } catch (const Error& e) {
+          EXPECT_NE(std::string(e.what()).find("map 2 (in job order) is fixed with a non-finite"),
+                    std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      Error);
+  FixedPoses second(2);
+  second[1] = Pose2();
+  EXPECT_THROW(MergeFleet(maps, 0, second, FleetOptions{}), Error);  // reference not the fixed one
+  EXPECT_THROW(MergeFleet(maps, 1, FixedPoses(3), FleetOptions{}), Error);  // wrong length
+}
+
+}  // namespace
+}  // namespace fleetmerge
