@@ -25,7 +25,7 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 # the Python module needs at run time, which no ELF file says: the interpreter it was built for
 # (the extension's ABI is python3.X's) and numpy (Map.data is a numpy array).
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
-set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)  # shlibs for libfleetmerge, and the ldconfig trigger
+set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)  # shlibs for libfleetmerge; ldconfig: debian/postinst
 if(FLEETMERGE_PYTHON_VERSION)  # python/CMakeLists.txt: the interpreter pybind11 built for
   string(REPLACE "." ";" major_minor ${FLEETMERGE_PYTHON_VERSION})
   list(GET major_minor 0 major)

@@ -36,7 +36,7 @@ ccache_counts() {  # hits and misses so far (the cache is shared: differences on
 }
 read -r hits0 misses0 < <(ccache_counts)
 start=$SECONDS
-(cd "$ws" && colcon build --event-handlers console_cohesion- --cmake-args -DCMAKE_BUILD_TYPE=Release \
+(cd "$ws" && colcon build --cmake-args -DCMAKE_BUILD_TYPE=Release \
   -DFLEETMERGE_BUILD_TESTS=OFF -DFLEETMERGE_BUILD_BENCHMARKS=OFF "${launcher[@]}") \
   > "$ws/colcon_build.log" 2>&1 || { tail -n 60 "$ws/colcon_build.log"; fail "colcon build"; }
 echo "colcon build of fleetmerge and fleetmerge_consumer: $((SECONDS - start)) s"

@@ -21,7 +21,7 @@ apt-get install -y -qq "$deb" > "$tmp/apt_install.log" || { cat "$tmp/apt_instal
 dpkg -L fleetmerge > "$tmp/files.txt"
 echo "Depends: $(dpkg-query -W -f='${Depends}' fleetmerge)"
 dpkg-query -W -f='${Depends}' fleetmerge | grep -q 'python3-numpy' || fail "no python3-numpy in Depends"
-dpkg-query -W -f='${Depends}' fleetmerge | grep -q 'libceres' || fail "no libceres (dpkg-shlibdeps) in Depends"
+dpkg-query -W -f='${Depends}' fleetmerge | grep -q 'libopencv-core' || fail "no libopencv-core (dpkg-shlibdeps) in Depends"
 
 multiarch=$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || gcc -print-multiarch)
 for f in /usr/bin/fleetmerge /usr/include/fleetmerge/fleetmerge.hpp /usr/include/fleetmerge/version.hpp \
