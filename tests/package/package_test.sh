@@ -20,8 +20,11 @@ remove_package || true  # a left-over install from an earlier run
 apt-get install -y -qq "$deb" > "$tmp/apt_install.log" || { cat "$tmp/apt_install.log"; fail "apt-get install $deb"; }
 dpkg -L fleetmerge > "$tmp/files.txt"
 echo "Depends: $(dpkg-query -W -f='${Depends}' fleetmerge)"
-dpkg-query -W -f='${Depends}' fleetmerge | grep -q 'python3-numpy' || fail "no python3-numpy in Depends"
-dpkg-query -W -f='${Depends}' fleetmerge | grep -q 'libopencv-core' || fail "no libopencv-core (dpkg-shlibdeps) in Depends"
+# (Outputs are read whole before matching: `cmd | grep -q` fails under pipefail when grep's early
+# exit kills cmd with SIGPIPE.)
+depends=$(dpkg-query -W -f='${Depends}' fleetmerge)
+[[ $depends == *python3-numpy* ]] || fail "no python3-numpy in Depends"
+[[ $depends == *libopencv-core* ]] || fail "no libopencv-core (dpkg-shlibdeps) in Depends"
 
 multiarch=$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || gcc -print-multiarch)
 for f in /usr/bin/fleetmerge /usr/include/fleetmerge/fleetmerge.hpp /usr/include/fleetmerge/version.hpp \
@@ -32,7 +35,7 @@ done
 grep -q "^/usr/lib/$multiarch/libfleetmerge\.so\." "$tmp/files.txt" || fail "no libfleetmerge.so.*"
 grep -q '^/usr/lib/python3/dist-packages/fleetmerge/_fleetmerge.*\.so$' "$tmp/files.txt" ||
   fail "no Python extension module"
-ldconfig -p | grep -q libfleetmerge || fail "libfleetmerge not in the ldconfig cache"
+[[ $(ldconfig -p) == *libfleetmerge.so.* ]] || fail "libfleetmerge not in the ldconfig cache"
 
 # The command: on PATH, its version, and the demo end to end.
 [ "$(command -v fleetmerge)" = /usr/bin/fleetmerge ] || fail "fleetmerge on PATH is $(command -v fleetmerge)"
@@ -87,6 +90,6 @@ while read -r path; do
 done < "$tmp/files.txt"
 [ -e /usr/lib/python3/dist-packages/fleetmerge ] && { echo "left behind: the module's folder" >&2; left=$((left + 1)); }
 [ "$left" -eq 0 ] || fail "$left paths of the package left after apt-get purge"
-! ldconfig -p | grep -q libfleetmerge || fail "libfleetmerge still in the ldconfig cache"
+[[ $(ldconfig -p) != *libfleetmerge* ]] || fail "libfleetmerge still in the ldconfig cache"
 echo "apt-get purge: none of the $(wc -l < "$tmp/files.txt") paths the package listed is left"
 echo "package_test: all checks passed"
