@@ -19,10 +19,6 @@
 #include "pipeline/octree_maps.hpp"
 #include "pipeline/pair_merge.hpp"
 
-#ifndef FLEETMERGE_VERSION
-#error "FLEETMERGE_VERSION must be defined by the build"
-#endif
-
 namespace fleetmerge {
 namespace {
 
@@ -173,7 +169,7 @@ std::optional<std::string> Reference(const Options& options) {
 
 }  // namespace
 
-std::string Version() { return FLEETMERGE_VERSION; }
+std::string Version() { return FLEETMERGE_VERSION_STRING; }
 
 Map::Map(std::vector<std::int8_t> data, int width, int height, double resolution_m, Pose2D origin,
          std::string name)

@@ -14,6 +14,7 @@
 #include "cli/process_memory.hpp"
 #include "cli/simulate_command.hpp"
 #include "core/error.hpp"
+#include "fleetmerge/version.hpp"  // generated from project(VERSION) (api/CMakeLists.txt)
 
 int main(int argc, char** argv) {
   using namespace fleetmerge;
@@ -22,6 +23,10 @@ int main(int argc, char** argv) {
       "fleetmerge: merge the occupancy grid maps of a robot fleet (Carpin's Hough-spectrum "
       "method)"};
   app.require_subcommand(1);
+  // `fleetmerge --version` and `fleetmerge version` print the same line.
+  const std::string version_line = std::string("fleetmerge ") + FLEETMERGE_VERSION_STRING;
+  app.set_version_flag("--version", version_line, "print the version and exit");
+  CLI::App* version_app = app.add_subcommand("version", "Print the version");
 
   PairCommand pair;
   CLI::App* pair_app = app.add_subcommand(
@@ -166,6 +171,10 @@ int main(int argc, char** argv) {
   } catch (const Error& e) {  // thrown by option callbacks (e.g. a bad sampling spec)
     std::cerr << "fleetmerge: error: " << e.what() << "\n";
     return 2;
+  }
+  if (version_app->parsed()) {
+    std::cout << version_line << "\n";
+    return 0;
   }
   try {
     if (demo_app->parsed()) return RunDemoCommand(demo, std::cout, std::cerr);

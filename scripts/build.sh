@@ -8,5 +8,9 @@ jobs=$(nproc 2>/dev/null || echo 2)
 # folder, a colcon workspace, a package build) reuse the objects of the first.
 launcher=()
 command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFLEETMERGE_BUILD_BENCHMARKS=ON "${launcher[@]}" "$@"
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}  # compile commands under the repository hash alike
+# Tests and the Python module on explicitly: scripts/quickstart.sh configures the same folder
+# with them off.
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFLEETMERGE_BUILD_TESTS=ON -DFLEETMERGE_BUILD_PYTHON=ON \
+  -DFLEETMERGE_BUILD_BENCHMARKS=ON "${launcher[@]}" "$@"
 cmake --build build -j"$jobs"

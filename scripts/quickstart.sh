@@ -2,9 +2,20 @@
 # The README's first command: set up, build, and run the main job on a built-in default.
 # `fleetmerge demo` simulates 4 robots exploring a synthetic office (robot maps with the true
 # answer), merges their maps, scores the merge against the truth and lists where the outputs are.
+#
+# Only what the demo needs: the command's packages (install_deps.sh --cli), a build without the
+# tests, benchmarks and Python module, and only the `fleetmerge` target. scripts/test.sh installs
+# and builds the rest in the same build/ folder.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh
+bash scripts/install_deps.sh --cli
+jobs=$(nproc 2>/dev/null || echo 2)
+launcher=()
+command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
+export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$PWD}  # as scripts/build.sh
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DFLEETMERGE_BUILD_TESTS=OFF \
+  -DFLEETMERGE_BUILD_BENCHMARKS=OFF -DFLEETMERGE_BUILD_PYTHON=OFF "${launcher[@]}" "$@"
+cmake --build build -j"$jobs" --target fleetmerge
 out=out/demo
 ./build/cli/fleetmerge demo --out "$out"
 echo

@@ -4,6 +4,8 @@
 //   merge_fleet merge OUT A.yaml B.yaml ...  merges the maps (files written to OUT) and prints
 //                                        where each map went and the merged maps' sizes
 //   merge_fleet memory                   builds two maps in memory and pairs them
+//   merge_fleet version                  the header's version macros and the library's version;
+//                                        exit 1 when they differ (a header from another release)
 #include <cstdio>
 #include <exception>
 #include <fleetmerge/fleetmerge.hpp>
@@ -60,6 +62,18 @@ int InMemory() {
   return 0;
 }
 
+// FLEETMERGE_VERSION_* are the header's (compile time), Version() the library's (run time).
+int PrintVersion() {
+  const std::string from_numbers = std::to_string(FLEETMERGE_VERSION_MAJOR) + "." +
+                                   std::to_string(FLEETMERGE_VERSION_MINOR) + "." +
+                                   std::to_string(FLEETMERGE_VERSION_PATCH);
+  std::printf("header %s (%s) library %s\n", FLEETMERGE_VERSION_STRING, from_numbers.c_str(),
+              fleetmerge::Version().c_str());
+  const bool same = from_numbers == FLEETMERGE_VERSION_STRING &&
+                    fleetmerge::Version() == FLEETMERGE_VERSION_STRING;
+  return same ? 0 : 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,7 +86,8 @@ int main(int argc, char** argv) {
       return MergeFiles(argv[2], std::vector<std::string>(argv + 3, argv + argc));
     }
     if (command == "memory" && argc == 2) return InMemory();
-    std::fprintf(stderr, "usage: merge_fleet pair A B [N] | merge OUT MAP... | memory\n");
+    if (command == "version" && argc == 2) return PrintVersion();
+    std::fprintf(stderr, "usage: merge_fleet pair A B [N] | merge OUT MAP... | memory | version\n");
     return 2;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "merge_fleet: %s\n", e.what());

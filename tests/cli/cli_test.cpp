@@ -3,7 +3,10 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
 #include <string>
 
 #include "tests/support/fleetmerge_cli.hpp"
@@ -112,6 +115,30 @@ TEST_F(CliTest, PaperMethodIsSelectable) {
       Fleetmerge("pair " + A() + " " + B() + " --translation spectra --no-refine --json");
   ASSERT_EQ(run.exit_code, 0) << run.both();
   EXPECT_GE(nlohmann::json::parse(run.out)["hypotheses"].size(), 1u);
+}
+
+// The version comes from one place, project(... VERSION x.y.z) in the top CMakeLists.txt, read
+// here from the file itself rather than through the build's generated header.
+std::string ProjectVersion() {
+  std::ifstream in(std::string(FLEETMERGE_SOURCE_DIR) + "/CMakeLists.txt");
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string cmake = text.str();
+  std::smatch match;
+  const std::regex project(R"(project\(fleetmerge\s+VERSION\s+([0-9]+\.[0-9]+\.[0-9]+))");
+  if (!std::regex_search(cmake, match, project)) return "(no project VERSION in CMakeLists.txt)";
+  return match[1];
+}
+
+TEST(CliVersion, FlagAndCommandPrintTheProjectVersion) {
+  const std::string expected = "fleetmerge " + ProjectVersion() + "\n";
+  for (const char* args : {"--version", "version"}) {
+    const auto run = testing::Fleetmerge(args);
+    EXPECT_EQ(run.exit_code, 0) << args << ": " << run.both();
+    EXPECT_EQ(run.out, expected) << args;
+  }
+  // A subcommand is still required otherwise: the version flag did not relax that.
+  EXPECT_NE(testing::Fleetmerge("").exit_code, 0);
 }
 
 }  // namespace

@@ -1,25 +1,34 @@
 #!/usr/bin/env bash
-# installed_package_test.sh BUILD_DIR SOURCE_DIR MAPS_DIR TMP_DIR (ctest: installed_package)
+# installed_package_test.sh BUILD_DIR SOURCE_DIR MAPS_DIR TMP_DIR LIBDIR (ctest: installed_package)
+# LIBDIR: the build's CMAKE_INSTALL_LIBDIR (lib, or lib/<multiarch> for the prefix /usr).
 set -euo pipefail
-build=$1 source=$2 maps=$3 tmp=$4
+build=$1 source=$2 maps=$3 tmp=$4 libdir=$5
 rm -rf "$tmp" && mkdir -p "$tmp"
 prefix=$tmp/prefix
 
 cmake --install "$build" --prefix "$prefix" > "$tmp/install.log"
-for f in bin/fleetmerge include/fleetmerge/fleetmerge.hpp lib/cmake/fleetmerge/fleetmergeConfig.cmake \
-         lib/cmake/fleetmerge/fleetmergeConfigVersion.cmake; do
+for f in bin/fleetmerge include/fleetmerge/fleetmerge.hpp include/fleetmerge/version.hpp \
+         "$libdir/cmake/fleetmerge/fleetmergeConfig.cmake" \
+         "$libdir/cmake/fleetmerge/fleetmergeConfigVersion.cmake"; do
   [ -e "$prefix/$f" ] || { echo "FAIL: the install has no $f"; exit 1; }
 done
-ls "$prefix"/lib/libfleetmerge.so* > /dev/null
-# Only the public header is installed.
+ls "$prefix/$libdir"/libfleetmerge.so* > /dev/null
+# Only the public header and the version header it includes are installed.
 headers=$(find "$prefix/include" -type f | wc -l)
-[ "$headers" -eq 1 ] || { echo "FAIL: $headers headers installed, expected 1"; exit 1; }
+[ "$headers" -eq 2 ] || { echo "FAIL: $headers headers installed, expected 2"; exit 1; }
 
 # A project outside the repository, with nothing but find_package(fleetmerge).
 cmake -S "$source/examples/cpp_consumer" -B "$tmp/consumer" -DCMAKE_PREFIX_PATH="$prefix" \
   -DCMAKE_BUILD_TYPE=Release > "$tmp/consumer_configure.log"
 cmake --build "$tmp/consumer" > "$tmp/consumer_build.log"
 consumer=$tmp/consumer/merge_fleet
+
+# The header's version macros, the library's Version() and the installed command agree.
+"$consumer" version
+read -r _ header_version _ _ library_version < <("$consumer" version)
+[ "fleetmerge $header_version" = "$("$prefix/bin/fleetmerge" --version)" ] ||
+  { echo "FAIL: header $header_version, command $("$prefix/bin/fleetmerge" --version)"; exit 1; }
+[ "$library_version" = "$header_version" ]
 
 # In memory: b is a's room shifted by 20 x 10 cells of 5 cm, so b's frame is at (1.0, 0.5) in a's.
 read -r x y yaw omega < <("$consumer" memory)

@@ -8,6 +8,7 @@ environment gives FLEETMERGE_EXECUTABLE, FLEETMERGE_SHARED_MAPS and PYTHONPATH.
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import threading
@@ -359,3 +360,13 @@ def test_bags_load_and_pair_as_the_cli_reads_them():
         [(e["x"], e["y"], e["yaw"], e["omega"]) for e in expected["hypotheses"]]
     with pytest.raises(RuntimeError, match="not a ROS 2 bag|no such|does not exist"):
         fleetmerge.load_map(bags)  # a folder of bags is not a bag
+
+
+# --- version ------------------------------------------------------------------------------------
+
+def test_version_is_the_project_version_and_the_commands():
+    """__version__ is project(VERSION) of the top CMakeLists.txt, as `fleetmerge --version` says."""
+    cmake = (Path(__file__).resolve().parents[2] / "CMakeLists.txt").read_text()
+    project = re.search(r"project\(fleetmerge\s+VERSION\s+(\d+\.\d+\.\d+)", cmake).group(1)
+    assert fleetmerge.__version__ == project
+    assert cli("--version").stdout == f"fleetmerge {project}\n"

@@ -22,9 +22,12 @@
 #include <utility>
 #include <vector>
 
+#include "fleetmerge/version.hpp"  // FLEETMERGE_VERSION_MAJOR, ..._STRING: this header's version
+
 namespace fleetmerge {
 
-// The package version (CMake project version).
+// The library's version, "MAJOR.MINOR.PATCH" (CMake's project version): FLEETMERGE_VERSION_STRING
+// of the build that made libfleetmerge.so.
 std::string Version();
 
 // A planar pose: metres and radians.
