@@ -4,7 +4,7 @@
 # test (no recovery). The heavy accuracy tests run a reduced number of trials
 # (FLEETMERGE_TEST_SCALE), and the real-map accuracy sweeps run on the Intel map only: the other
 # buildings repeat the same code paths on more data (they run in full in scripts/test.sh), and
-# under ASan they took 300 s of CPU, which CI's 20 minutes cannot spare. Likewise three tests
+# under ASan they took 300 s of CPU, which CI's 25 minutes cannot spare. Likewise three tests
 # that rerun covered code with other settings (70 s of CPU).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,4 +22,7 @@ same_paths_on_more_data+='|^FleetAccuracySuite\.KnownHardBuilding|^PairAccuracy\
 # Same code as other tests, run again with other settings (threads, sampling, kills).
 same_paths_on_more_data+='|^FleetMerge\.ResultDoesNotDependOnThreadCount'
 same_paths_on_more_data+='|^PairAccuracy\.SampledTranslationPoints|^MergeKillTest\.'
+# The ranking on more simulated fleets (pose_evidence_test covers its code), and fixed maps that
+# disagree (RobotsInARealBuildingLandOnItsFixedMap covers the fixed path).
+same_paths_on_more_data+='|^LookAlikeRanking\.|^FixedBase\.SeveralFixedMapsNeverMove'
 ctest --test-dir build-fuzz --output-on-failure -j"$jobs" -E "$same_paths_on_more_data"
