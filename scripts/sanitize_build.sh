@@ -2,7 +2,7 @@
 # Configures and builds build-fuzz/: clang with AddressSanitizer + UndefinedBehaviorSanitizer
 # (no recovery), -O1, coverage instrumentation and the libFuzzer targets (FLEETMERGE_FUZZ), no
 # benchmarks. One build serves both CI stages, the sanitizer test suite and the fuzzers: two
-# builds of the whole tree do not fit CI's 20 minutes on 2 cores. No debug info by default (-g0:
+# builds of the whole tree do not fit CI's 25 minutes on 2 cores. No debug info by default (-g0:
 # 15 % less compile time; reports name functions, not lines): FLEETMERGE_DEBUG_FLAGS=-g1 (or
 # -g) for line numbers when chasing a report. Idempotent.
 set -euo pipefail
