@@ -29,7 +29,7 @@ double ChanceWallRate(const OccupancyGrid& onto, const cv::Mat1b& onto_near_wall
                       double onto_near_wall_share, const std::vector<Eigen::Vector2f>& from,
                       const Pose2& T_onto_from) {
   long near = 0, judged = 0;
-  for (const Eigen::Vector2d shift :
+  for (const Eigen::Vector2d& shift :
        {Eigen::Vector2d(kChanceShiftCells, 0.0), Eigen::Vector2d(-kChanceShiftCells, 0.0),
         Eigen::Vector2d(0.0, kChanceShiftCells), Eigen::Vector2d(0.0, -kChanceShiftCells)}) {
     const WallCount c = CountWalls(onto, onto_near_walls, from, Pose2(shift, 0.0) * T_onto_from);

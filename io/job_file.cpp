@@ -183,7 +183,7 @@ Pose2 ReadPose(const YamlField& field, const YamlErrors& errors) {
 MapEntry ReadMapEntry(const YamlField& entry, const fs::path& folder, const YamlErrors& errors) {
   const std::string expected =
       "a map YAML or bag path, or a mapping {path, name, topic, fixed, pose}";
-  MapEntry listed{{}, entry, entry};
+  MapEntry listed{{}, entry, entry, false, Pose2()};
   std::string source;
   if (entry.value.IsMap()) {
     const YamlMapping map(entry, {"path", "name", "topic", "fixed", "pose"}, expected, errors);
