@@ -29,9 +29,4 @@ MapFeatures::MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& opt
   }
 }
 
-double SymmetricWallAgreement(const MapFeatures& a, const MapFeatures& b, const Pose2& T_ga_gb) {
-  return std::min(WallAgreement(a.grid, a.near_walls, b.occupied, T_ga_gb),
-                  WallAgreement(b.grid, b.near_walls, a.occupied, T_ga_gb.inverse()));
-}
-
 }  // namespace fleetmerge

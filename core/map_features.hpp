@@ -39,7 +39,4 @@ struct MapFeatures {
 std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& a, const MapFeatures& b,
                                                const HypothesisOptions& options, int threads = 1);
 
-// SymmetricWallAgreement (core/wall_agreement.hpp) with the maps' near-wall masks.
-double SymmetricWallAgreement(const MapFeatures& a, const MapFeatures& b, const Pose2& T_ga_gb);
-
 }  // namespace fleetmerge
