@@ -27,10 +27,6 @@ constexpr auto kRetryPeriod = std::chrono::milliseconds(100);
 // Longer waits (up to infinity) are cut to this, which the clock's nanoseconds still hold.
 constexpr double kLongestWaitS = 1e9;
 
-bool StartsWith(const std::string& text, const std::string& prefix) {
-  return text.compare(0, prefix.size(), prefix) == 0;
-}
-
 std::string NowUtc() {
   const std::time_t now = std::time(nullptr);
   std::tm utc{};
@@ -77,13 +73,6 @@ bool SameFile(int fd, const fs::path& path) {
   return opened.st_dev == named.st_dev && opened.st_ino == named.st_ino;
 }
 
-// Absolute, without "." / ".." / a trailing '/'.
-fs::path Normalised(const fs::path& folder) {
-  fs::path path = fs::absolute(folder).lexically_normal();
-  if (!path.has_filename()) path = path.parent_path();
-  return path;
-}
-
 std::string SecondsText(double seconds) {
   std::ostringstream out;
   out << seconds;
@@ -92,8 +81,14 @@ std::string SecondsText(double seconds) {
 
 }  // namespace
 
+fs::path NormalisedFolder(const fs::path& folder) {
+  fs::path path = fs::absolute(folder).lexically_normal();
+  if (!path.has_filename()) path = path.parent_path();
+  return path;
+}
+
 fs::path FolderLockPath(const fs::path& folder) {
-  const fs::path path = Normalised(folder);
+  const fs::path path = NormalisedFolder(folder);
   return path.parent_path() / ("." + path.filename().string() + kLockTag);
 }
 
@@ -104,7 +99,7 @@ std::optional<FolderLockHolder> ParseFolderLockFile(const std::string& text) {
   FolderLockHolder holder;
   bool have_pid = false, have_host = false, have_since = false, have_job = false;
   while (std::getline(in, line)) {
-    if (StartsWith(line, "pid: ")) {
+    if (line.rfind("pid: ", 0) == 0) {
       const std::string digits = line.substr(5);
       if (digits.empty() || digits.size() > 10 ||
           !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; })) {
@@ -112,13 +107,13 @@ std::optional<FolderLockHolder> ParseFolderLockFile(const std::string& text) {
       }
       holder.pid = std::stol(digits);
       have_pid = holder.pid > 0;
-    } else if (StartsWith(line, "host: ")) {
+    } else if (line.rfind("host: ", 0) == 0) {
       holder.host = line.substr(6);
       have_host = !holder.host.empty();
-    } else if (StartsWith(line, "since: ")) {
+    } else if (line.rfind("since: ", 0) == 0) {
       holder.since_utc = line.substr(7);
       have_since = !holder.since_utc.empty();
-    } else if (StartsWith(line, "job: ")) {
+    } else if (line.rfind("job: ", 0) == 0) {
       holder.job = line.substr(5);
       have_job = !holder.job.empty();
     } else if (!line.empty()) {
@@ -132,7 +127,7 @@ std::optional<FolderLockHolder> ParseFolderLockFile(const std::string& text) {
 FolderLock::FolderLock(const fs::path& folder, const std::string& job, double wait_s,
                        const std::string& label, const WaitNotice& notice)
     : path_(FolderLockPath(folder)) {
-  const std::string folder_name = Normalised(folder).string();
+  const std::string folder_name = NormalisedFolder(folder).string();
   const double bounded_wait_s = wait_s > 0 ? std::min(wait_s, kLongestWaitS) : 0.0;  // NaN: 0
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(

@@ -31,6 +31,10 @@ struct FolderLockHolder {
   std::string job;        // the job's identity (its file and name)
 };
 
+// `folder` absolute, without "." / ".." / a trailing '/', so that its parent is the folder that
+// holds it ("out/" and "./out" are one folder).
+std::filesystem::path NormalisedFolder(const std::filesystem::path& folder);
+
 // `.<name>.fleetmerge-lock` beside `folder` (absolute, normalised: "out/" and "./out" share it).
 std::filesystem::path FolderLockPath(const std::filesystem::path& folder);
 

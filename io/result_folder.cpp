@@ -46,14 +46,6 @@ void SyncFolder(const fs::path& folder) {  // best effort, as in atomic_file.cpp
   ::close(fd);
 }
 
-// A job's output path without "." / ".." / a trailing '/', so that its parent is the folder that
-// holds it.
-fs::path Normalised(const fs::path& output_dir) {
-  fs::path path = fs::absolute(output_dir).lexically_normal();
-  if (!path.has_filename()) path = path.parent_path();
-  return path;
-}
-
 bool IsInside(const fs::path& file, const fs::path& folder) {
   if (file.empty()) return false;
   std::error_code ec;
@@ -195,7 +187,7 @@ ResultManifest ReadResultManifest(const fs::path& folder) {
 ResultFolder::ResultFolder(fs::path output_dir, std::string job_id, bool force,
                            const std::vector<fs::path>& inputs, double lock_wait_s,
                            const FolderLock::WaitNotice& notice)
-    : output_dir_(Normalised(output_dir)), job_id_(std::move(job_id)) {
+    : output_dir_(NormalisedFolder(output_dir)), job_id_(std::move(job_id)) {
   std::replace(job_id_.begin(), job_id_.end(), '\n', ' ');  // the manifest is line-based
   std::error_code ec;
   fs::create_directories(output_dir_.parent_path(), ec);

@@ -6,20 +6,17 @@
 #include <opencv2/core.hpp>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "io/atomic_file.hpp"
 #include "io/png_image.hpp"
 #include "pipeline/html_report_template.hpp"
-#include "core/parallel.hpp"
 #include "pipeline/preview.hpp"
+#include "pipeline/report_json.hpp"
 
 namespace fleetmerge {
 namespace {
 
 constexpr const char* kDataMarker = "/*FLEETMERGE_REPORT_DATA*/";
-
-nlohmann::json PoseJson(const Pose2& T) {
-  return {{"x", T.x_m()}, {"y", T.y_m()}, {"yaw", T.yaw_rad()}};
-}
 
 std::string MapImageName(std::size_t m) { return "report_map_" + std::to_string(m) + ".png"; }
 

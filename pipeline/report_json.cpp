@@ -3,11 +3,11 @@
 #include <cmath>
 
 namespace fleetmerge {
-namespace {
-
 nlohmann::json PoseJson(const Pose2& T) {
   return {{"x", T.x_m()}, {"y", T.y_m()}, {"yaw", T.yaw_rad()}};
 }
+
+namespace {
 
 nlohmann::json PairJson(const Job& job, const PairOutcome& p) {
   nlohmann::json j = {{"a", job.maps[p.a].name},

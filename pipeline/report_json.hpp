@@ -27,6 +27,8 @@ struct JobTiming {
   double load_ms = 0.0, write_ms = 0.0, total_ms = 0.0;
 };
 
+// {x, y, yaw} (metres, radians), as every pose in report.json.
+nlohmann::json PoseJson(const Pose2& T);
 // A pair's hypotheses as report.json and `pair --json` give them.
 nlohmann::json HypothesesJson(const std::vector<PairHypothesis>& hypotheses);
 // The ranking margin: null when there is no runner-up (infinite).

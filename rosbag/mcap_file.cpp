@@ -8,21 +8,10 @@
 #include "rosbag/binary_file.hpp"
 #include "rosbag/byte_reader.hpp"
 #include "rosbag/decompress.hpp"
+#include "rosbag/mcap_records.hpp"
 
 namespace fleetmerge {
 namespace {
-
-constexpr char kMagic[] = "\x89MCAP0\r\n";
-constexpr std::size_t kMagicSize = 8;
-enum Op : std::uint8_t {
-  kHeader = 0x01,
-  kFooter = 0x02,
-  kSchema = 0x03,
-  kChannel = 0x04,
-  kMessage = 0x05,
-  kChunk = 0x06,
-  kDataEnd = 0x0F,
-};
 
 std::string String(ByteReader& r, const char* what) {
   const std::uint32_t length = r.U32(what);
@@ -38,8 +27,8 @@ class McapReader {
  public:
   explicit McapReader(const std::filesystem::path& path) : file_(path) {
     const std::string magic =
-        file_.Read(0, std::min<std::uint64_t>(kMagicSize, file_.size()), "magic");
-    if (magic != std::string(kMagic, kMagicSize)) {
+        file_.Read(0, std::min<std::uint64_t>(mcap::kMagicSize, file_.size()), "magic");
+    if (magic != std::string(mcap::kMagic, mcap::kMagicSize)) {
       throw Error(path.string() + ": not an MCAP file (expected the magic bytes \\x89MCAP0)");
     }
   }
@@ -47,7 +36,7 @@ class McapReader {
   // Visits every channel and message record in the data section, in file order.
   void Scan(const std::function<void(const Channel&, std::uint16_t, std::int64_t,
                                      std::string_view)>& on_message) {
-    for (std::uint64_t offset = kMagicSize; offset < file_.size();) {
+    for (std::uint64_t offset = mcap::kMagicSize; offset < file_.size();) {
       const std::string head = file_.Read(offset, 9, "record opcode and length");
       const auto op = static_cast<std::uint8_t>(head[0]);
       std::uint64_t length;
@@ -58,10 +47,11 @@ class McapReader {
         throw Error(where + ": its length " + std::to_string(length) +
                     " runs past the end of the file (truncated or corrupt MCAP)");
       }
-      if (op == kFooter || op == kDataEnd) return;
-      if (op == kSchema || op == kChannel || op == kMessage || op == kChunk) {
+      if (op == mcap::kFooter || op == mcap::kDataEnd) return;
+      if (op == mcap::kSchema || op == mcap::kChannel || op == mcap::kMessage ||
+          op == mcap::kChunk) {
         const std::string body = file_.Read(offset + 9, length, "record");
-        if (op == kChunk) {
+        if (op == mcap::kChunk) {
           Chunk(body, where, on_message);
         } else {
           Record(op, body, where, on_message);
@@ -81,17 +71,17 @@ class McapReader {
   void Record(std::uint8_t op, std::string_view body, const std::string& where,
               const OnMessage& on_message) {
     ByteReader r(body, where);
-    if (op == kSchema) {
+    if (op == mcap::kSchema) {
       const std::uint16_t id = r.U16("schema id");
       schemas_[id] = String(r, "schema name");
-    } else if (op == kChannel) {
+    } else if (op == mcap::kChannel) {
       const std::uint16_t id = r.U16("channel id");
       Channel c;
       c.schema_id = r.U16("channel schema id");
       c.topic = String(r, "channel topic");
       c.encoding = String(r, "channel message encoding");
       channels_[id] = c;
-    } else if (op == kMessage) {
+    } else if (op == mcap::kMessage) {
       const std::uint16_t channel = r.U16("message channel id");
       r.U32("message sequence");
       const auto log_time = static_cast<std::int64_t>(r.U64("message log time"));

@@ -6,31 +6,13 @@
 
 #include "core/error.hpp"
 #include "rosbag/byte_writer.hpp"
+#include "rosbag/mcap_records.hpp"
 
 namespace fleetmerge {
 namespace {
 
-constexpr char kMagic[] = "\x89MCAP0\r\n";
-constexpr std::size_t kMagicSize = 8;
-
-enum Opcode : std::uint8_t {
-  kHeader = 0x01,
-  kFooter = 0x02,
-  kSchema = 0x03,
-  kChannel = 0x04,
-  kMessage = 0x05,
-  kChunk = 0x06,
-  kMessageIndex = 0x07,
-  kChunkIndex = 0x08,
-  kStatistics = 0x0b,
-  kMetadata = 0x0c,
-  kMetadataIndex = 0x0d,
-  kSummaryOffset = 0x0e,
-  kDataEnd = 0x0f,
-};
-
 // One record: opcode, uint64 content length, content.
-void PutRecord(ByteWriter& out, Opcode opcode, const std::string& content) {
+void PutRecord(ByteWriter& out, mcap::Op opcode, const std::string& content) {
   out.Put(static_cast<std::uint8_t>(opcode));
   out.Put(static_cast<std::uint64_t>(content.size()));
   out.Bytes(content);
@@ -134,8 +116,8 @@ std::string McapWriter::Finish() const {
 
   // The chunk's records; each message's offset inside them goes to its channel's MessageIndex.
   ByteWriter chunk_records;
-  for (const std::string& r : schema_records) PutRecord(chunk_records, kSchema, r);
-  for (const std::string& r : channel_records) PutRecord(chunk_records, kChannel, r);
+  for (const std::string& r : schema_records) PutRecord(chunk_records, mcap::kSchema, r);
+  for (const std::string& r : channel_records) PutRecord(chunk_records, mcap::kChannel, r);
   std::map<std::uint16_t, std::vector<std::pair<std::uint64_t, std::uint64_t>>> index;
   std::map<std::uint16_t, std::uint64_t> counts;
   std::uint64_t start_ns = std::numeric_limits<std::uint64_t>::max(), end_ns = 0;
@@ -150,17 +132,17 @@ std::string McapWriter::Finish() const {
     r.Put(m.log_time_ns);
     r.Put(m.publish_time_ns);
     r.Bytes(m.data);
-    PutRecord(chunk_records, kMessage, r.bytes());
+    PutRecord(chunk_records, mcap::kMessage, r.bytes());
   }
   if (messages_.empty()) start_ns = 0;
 
   ByteWriter file;
-  file.Bytes(std::string_view(kMagic, kMagicSize));
+  file.Bytes(std::string_view(mcap::kMagic, mcap::kMagicSize));
   {
     ByteWriter r;
     r.Prefixed(profile_);
     r.Prefixed(library_);
-    PutRecord(file, kHeader, r.bytes());
+    PutRecord(file, mcap::kHeader, r.bytes());
   }
   const std::uint64_t chunk_start = file.size();
   {
@@ -173,7 +155,7 @@ std::string McapWriter::Finish() const {
     r.Prefixed("");  // compression: none
     r.Put(static_cast<std::uint64_t>(records.size()));
     r.Bytes(records);
-    PutRecord(file, kChunk, r.bytes());
+    PutRecord(file, mcap::kChunk, r.bytes());
   }
   const std::uint64_t chunk_length = file.size() - chunk_start;
   std::map<std::uint16_t, std::uint64_t> index_offsets;
@@ -188,7 +170,7 @@ std::string McapWriter::Finish() const {
     ByteWriter r;
     r.Put(channel_id);
     r.Prefixed(body.bytes());
-    PutRecord(file, kMessageIndex, r.bytes());
+    PutRecord(file, mcap::kMessageIndex, r.bytes());
   }
   const std::uint64_t indexes_length = file.size() - indexes_start;
   struct MetadataPlace {
@@ -201,26 +183,26 @@ std::string McapWriter::Finish() const {
     ByteWriter r;
     r.Prefixed(m.name);
     r.Bytes(StringMap(m.entries));
-    PutRecord(file, kMetadata, r.bytes());
+    PutRecord(file, mcap::kMetadata, r.bytes());
     metadata_places.push_back({offset, file.size() - offset, m.name});
   }
   {
     ByteWriter r;
     r.Put(Crc32(file.bytes(), 0, file.size()));
-    PutRecord(file, kDataEnd, r.bytes());
+    PutRecord(file, mcap::kDataEnd, r.bytes());
   }
 
   // Summary section: each group's place goes to a SummaryOffset record.
   const std::uint64_t summary_start = file.size();
-  std::vector<std::tuple<Opcode, std::uint64_t, std::uint64_t>> groups;
-  const auto group = [&](Opcode opcode, const std::vector<std::string>& records) {
+  std::vector<std::tuple<mcap::Op, std::uint64_t, std::uint64_t>> groups;
+  const auto group = [&](mcap::Op opcode, const std::vector<std::string>& records) {
     if (records.empty()) return;
     const std::uint64_t start = file.size();
     for (const std::string& r : records) PutRecord(file, opcode, r);
     groups.emplace_back(opcode, start, file.size() - start);
   };
-  group(kSchema, schema_records);
-  group(kChannel, channel_records);
+  group(mcap::kSchema, schema_records);
+  group(mcap::kChannel, channel_records);
   {
     ByteWriter r;
     r.Put(static_cast<std::uint64_t>(messages_.size()));
@@ -237,7 +219,7 @@ std::string McapWriter::Finish() const {
       map.Put(count);
     }
     r.Prefixed(map.bytes());
-    group(kStatistics, {r.bytes()});
+    group(mcap::kStatistics, {r.bytes()});
   }
   {
     ByteWriter r;
@@ -255,7 +237,7 @@ std::string McapWriter::Finish() const {
     r.Prefixed("");
     r.Put(static_cast<std::uint64_t>(chunk_records.size()));  // compressed size: stored as is
     r.Put(static_cast<std::uint64_t>(chunk_records.size()));
-    group(kChunkIndex, {r.bytes()});
+    group(mcap::kChunkIndex, {r.bytes()});
   }
   {
     std::vector<std::string> records;
@@ -266,7 +248,7 @@ std::string McapWriter::Finish() const {
       r.Prefixed(place.name);
       records.push_back(r.bytes());
     }
-    group(kMetadataIndex, records);
+    group(mcap::kMetadataIndex, records);
   }
   const std::uint64_t summary_offset_start = file.size();
   for (const auto& [opcode, start, length] : groups) {
@@ -274,16 +256,16 @@ std::string McapWriter::Finish() const {
     r.Put(static_cast<std::uint8_t>(opcode));
     r.Put(start);
     r.Put(length);
-    PutRecord(file, kSummaryOffset, r.bytes());
+    PutRecord(file, mcap::kSummaryOffset, r.bytes());
   }
   // Footer: its CRC covers the summary section and the footer up to the CRC field.
   const std::size_t footer_start = file.size();
-  file.Put(static_cast<std::uint8_t>(kFooter));
+  file.Put(static_cast<std::uint8_t>(mcap::kFooter));
   file.Put(static_cast<std::uint64_t>(8 + 8 + 4));
   file.Put(summary_start);
   file.Put(summary_offset_start);
   file.Put(Crc32(file.bytes(), summary_start, footer_start + 1 + 8 + 8 + 8));
-  file.Bytes(std::string_view(kMagic, kMagicSize));
+  file.Bytes(std::string_view(mcap::kMagic, mcap::kMagicSize));
   return file.bytes();
 }
 

@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "pipeline/pair_merge.hpp"
 #include "core/parallel.hpp"
+#include "pipeline/pair_merge.hpp"
 #include "sim/ground_truth_pair.hpp"
 
 namespace fleetmerge {
@@ -61,7 +61,8 @@ SamplingOptions ToSampling(const SamplingSetting& s, std::uint32_t seed) {
   return o;
 }
 
-double Median(std::vector<double> v) {
+// The upper median (the middle value of an even count rounded up).
+double UpperMedian(std::vector<double> v) {
   if (v.empty()) return 0.0;
   std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
   return v[v.size() / 2];
@@ -162,8 +163,8 @@ std::vector<SamplingSummary> SummarizeSampling(const std::vector<SamplingSetting
       sum.mean_time_ms /= n;
       sum.mean_omega /= n;
       sum.success_rate = double(success) / n;
-      sum.median_displacement_cells = Median(displacement);
-      sum.median_time_ms = Median(times);
+      sum.median_displacement_cells = UpperMedian(displacement);
+      sum.median_time_ms = UpperMedian(times);
     }
     out.push_back(sum);
   }
