@@ -42,7 +42,8 @@ struct CellHypothesis {
   double omega = 0.0;
   std::int64_t overlap_cells = 0;  // agr + dis of Eq. (1): cells known in both maps under T
   double wall_agreement = 0.0;     // core/wall_agreement.hpp; set by RankByEvidence
-  double evidence_nats = 0.0;      // core/pose_evidence.hpp; set by RankByEvidence
+  double evidence_nats = 0.0;      // core/pose_evidence.hpp; set by RankByEvidence (NaN
+                                   // where it ranks nothing)
 };
 
 // Best first: hypotheses reaching `min_overlap_cells` before the others, then by omega (stable).

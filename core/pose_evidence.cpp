@@ -47,23 +47,36 @@ double LogRatio(double hits, double trials, double q, double p) {
   return hits * std::log(q / p) + (trials - hits) * std::log((1.0 - q) / (1.0 - p));
 }
 
-}  // namespace
+// The walls of each map on the other's known cells under h (sets h.wall_agreement).
+struct WallCounts {
+  WallCount b_on_a, a_on_b;
+};
+WallCounts CountBothWays(const MapFeatures& a, const MapFeatures& b, CellHypothesis& h) {
+  WallCounts c{CountWalls(a.grid, a.near_walls, b.occupied, h.T_ga_gb),
+               CountWalls(b.grid, b.near_walls, a.occupied, h.T_ga_gb.inverse())};
+  h.wall_agreement = std::min(c.b_on_a.share(), c.a_on_b.share());  // SymmetricWallAgreement
+  return c;
+}
 
-double MeasureEvidence(const MapFeatures& a, const MapFeatures& b, CellHypothesis& h) {
-  const WallCount b_on_a = CountWalls(a.grid, a.near_walls, b.occupied, h.T_ga_gb);
-  const WallCount a_on_b = CountWalls(b.grid, b.near_walls, a.occupied, h.T_ga_gb.inverse());
-  h.wall_agreement = std::min(b_on_a.share(), a_on_b.share());  // SymmetricWallAgreement
+double Evidence(const MapFeatures& a, const MapFeatures& b, const CellHypothesis& h,
+                const WallCounts& walls) {
   const double o_a = a.occupied_share, o_b = b.occupied_share;
   const double chance_cell_agreement = o_a * o_b + (1.0 - o_a) * (1.0 - o_b);
   const double overlap = static_cast<double>(h.overlap_cells);
   const double nats =
       LogRatio(h.omega * overlap, overlap, kRightCellAgreement, chance_cell_agreement) +
-      LogRatio(b_on_a.near_wall, b_on_a.on_known, kRightWallAgreement,
+      LogRatio(walls.b_on_a.near_wall, walls.b_on_a.on_known, kRightWallAgreement,
                ChanceWallRate(a.grid, a.near_walls, a.near_wall_share, b.occupied, h.T_ga_gb)) +
       LogRatio(
-          a_on_b.near_wall, a_on_b.on_known, kRightWallAgreement,
+          walls.a_on_b.near_wall, walls.a_on_b.on_known, kRightWallAgreement,
           ChanceWallRate(b.grid, b.near_walls, b.near_wall_share, a.occupied, h.T_ga_gb.inverse()));
   return nats / kCellsPerObservation;
+}
+
+}  // namespace
+
+double MeasureEvidence(const MapFeatures& a, const MapFeatures& b, CellHypothesis& h) {
+  return Evidence(a, b, h, CountBothWays(a, b, h));
 }
 
 RankedHypotheses RankByEvidence(const MapFeatures& a, const MapFeatures& b,
@@ -71,7 +84,6 @@ RankedHypotheses RankByEvidence(const MapFeatures& a, const MapFeatures& b,
                                 std::int64_t min_overlap_cells) {
   RankedHypotheses ranked;
   ranked.margin_nats = std::numeric_limits<double>::infinity();
-  for (CellHypothesis& h : sorted) h.evidence_nats = MeasureEvidence(a, b, h);
   if (sorted.empty()) return ranked;
   // The tie: hypotheses with enough overlap within kOmegaTie of the best (SortHypotheses puts
   // those with enough overlap first, highest omega first).
@@ -79,6 +91,15 @@ RankedHypotheses RankByEvidence(const MapFeatures& a, const MapFeatures& b,
   const auto tied_end = std::find_if(sorted.begin(), sorted.end(), [&](const CellHypothesis& h) {
     return h.overlap_cells < min_overlap_cells || h.omega < best_omega - kOmegaTie;
   });
+  // Evidence decides the order of the tie and the margin to the runner-up, which is the second
+  // of the tie or else the second hypothesis: only those are measured (the chance rates cost
+  // four wall counts each way); every hypothesis gets its wall agreement.
+  const std::size_t measured = std::max<std::size_t>(tied_end - sorted.begin(), 2);
+  for (std::size_t k = 0; k < sorted.size(); ++k) {
+    const WallCounts walls = CountBothWays(a, b, sorted[k]);
+    sorted[k].evidence_nats =
+        k < measured ? Evidence(a, b, sorted[k], walls) : std::numeric_limits<double>::quiet_NaN();
+  }
   std::stable_sort(sorted.begin(), tied_end, [](const CellHypothesis& l, const CellHypothesis& r) {
     return l.evidence_nats > r.evidence_nats;
   });

@@ -57,7 +57,8 @@ struct RankedHypotheses {
   bool ambiguous = false;  // the runner-up, a different pose, is tied with the best
 };
 
-// Measures every hypothesis' evidence and ranks them (see above). `sorted` is in
+// Ranks the hypotheses (see above): sets every hypothesis' wall agreement, and the evidence of
+// those it compares (the tie and the runner-up; NaN for the others). `sorted` is in
 // SortHypotheses' order and free of duplicates (each a different pose).
 RankedHypotheses RankByEvidence(const MapFeatures& a, const MapFeatures& b,
                                 std::vector<CellHypothesis> sorted, std::int64_t min_overlap_cells);

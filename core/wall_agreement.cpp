@@ -27,8 +27,12 @@ WallCount CountWallsOnWalls(const OccupancyGrid& a, const cv::Mat1b& near_wall,
                             const Pose2& T_ga_gb, const ForEachWall& for_each_wall) {
   const auto unknown = static_cast<std::uint8_t>(CellState::kUnknown);
   WallCount count;
+  // Pose2 * point takes a sine and a cosine each time: once here, not once per wall cell (they
+  // were a fifth of a pair's time). The same arithmetic as Pose2's, so the same cells.
+  const Eigen::Matrix2d R = T_ga_gb.rotation();
+  const Eigen::Vector2d t = T_ga_gb.translation_m();
   for_each_wall([&](const Eigen::Vector2d& p_b) {
-    const Eigen::Vector2d p = T_ga_gb * p_b;
+    const Eigen::Vector2d p = t + R * p_b;
     const int ia = static_cast<int>(std::floor(p.x()));
     const int ja = static_cast<int>(std::floor(p.y()));
     if (ia < 0 || ja < 0 || ia >= a.width() || ja >= a.height()) return;
