@@ -89,9 +89,8 @@ TEST(PoseGraph, AnEdgesOwnSigmasWeighIt) {
   PoseGraphOptions options;
   options.loss = RobustLoss::kNone;
   const double yaw_sigma = 10.0 * options.yaw_sigma_rad;
-  const std::vector<PoseGraphEdge> edges = {
-      {0, 1, Pose2(5.0, 0.0, 0.0), 1.0, 0.0, 0.0},
-      {0, 1, Pose2(6.0, 0.0, 0.01), 1.0, 1.0, yaw_sigma}};
+  const std::vector<PoseGraphEdge> edges = {{0, 1, Pose2(5.0, 0.0, 0.0), 1.0, 0.0, 0.0},
+                                            {0, 1, Pose2(6.0, 0.0, 0.01), 1.0, 1.0, yaw_sigma}};
   std::vector<std::optional<Pose2>> initial = {Pose2(), Pose2(5.0, 0.0, 0.0)};
   const auto poses = OptimizePoseGraph(initial, edges, 0, options);
   ASSERT_TRUE(poses[1].has_value());
