@@ -132,7 +132,8 @@ MergeResult ToResult(const Job& job, const JobOutcome& outcome) {
   const FleetResult& r = outcome.result;
   MergeResult out;
   for (std::size_t m = 0; m < job.maps.size(); ++m) {
-    out.maps.push_back({job.maps[m].name, r.component_of[m], ToPublic(r.T_component_map[m])});
+    out.maps.push_back({job.maps[m].name, r.component_of[m], ToPublic(r.T_component_map[m]),
+                        PlacedByName(r.placed_by[m])});
   }
   for (std::size_t c = 0; c < r.components.size(); ++c) {
     Component component;
@@ -207,6 +208,22 @@ void Map::set_fixed(bool fixed, Pose2D pose) {
   pose_ = pose;
 }
 
+void Map::set_initial_pose(Pose2D pose, double sigma_m, double sigma_rad) {
+  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.yaw)) {
+    throw std::invalid_argument("map '" + name_ +
+                                "': an initial pose must be finite [x, y, yaw] (m, m, rad)");
+  }
+  if (!std::isfinite(sigma_m) || !(sigma_m > 0.0) || !std::isfinite(sigma_rad) ||
+      !(sigma_rad > 0.0)) {
+    throw std::invalid_argument("map '" + name_ + "': an initial pose's sigmas [" +
+                                std::to_string(sigma_m) + " m, " + std::to_string(sigma_rad) +
+                                " rad] must be finite and > 0");
+  }
+  initial_pose_ = pose;
+  initial_pose_sigma_m_ = sigma_m;
+  initial_pose_sigma_rad_ = sigma_rad;
+}
+
 std::int8_t Map::at(int i, int j) const {
   if (i < 0 || j < 0 || i >= width_ || j >= height_) return -1;
   return data_[static_cast<std::size_t>(j) * width_ + i];
@@ -266,6 +283,13 @@ MergeResult Merge(const std::vector<Map>& maps, const Options& options,
     job_map.name = name;
     job_map.fixed = maps[m].fixed();
     job_map.T_merged_map = Pose2(maps[m].pose().x, maps[m].pose().y, maps[m].pose().yaw);
+    if (const auto& p = maps[m].initial_pose()) {
+      Require(!maps[m].fixed(), "map '" + name +
+                                    "': a fixed map's pose is its given pose, exactly; it has no "
+                                    "initial pose (clear_initial_pose, or set_fixed(false))");
+      job_map.prior = PosePrior{Pose2(p->x, p->y, p->yaw), maps[m].initial_pose_sigma_m(),
+                                maps[m].initial_pose_sigma_rad()};
+    }
     job.maps.push_back(job_map);
     LoadedMap l;
     l.grid = ToGrid(maps[m]);

@@ -82,6 +82,17 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
       << " component(s), " << merged
       << " merged map(s); report: " << (job.output_dir / "report.json").string() << " ("
       << static_cast<int>(outcome.report["timing_ms"]["total"].get<double>()) << " ms)\n";
+  // Known start poses decide things the user must see: pairs they refused, maps they placed.
+  for (const PairOutcome& p : result.pairs) {
+    if (!p.refused_by_priors) continue;
+    out << job.name << ": pair " << job.maps[p.a].name << " + " << job.maps[p.b].name << " "
+        << p.note << "\n";
+  }
+  for (std::size_t m = 0; m < job.maps.size(); ++m) {
+    if (result.placed_by[m] != PlacedBy::kPrior) continue;
+    out << job.name << ": " << job.maps[m].name
+        << " placed by its initial_pose (no accepted pair links it to the rest)\n";
+  }
 }
 
 }  // namespace

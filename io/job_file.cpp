@@ -150,43 +150,62 @@ struct ListedMap {
   YamlField name;  // the entry itself when the name is the file's
 };
 
-// An entry: a path, or {path, name, topic, fixed, pose}; a bag entry without `topic` lists every
-// map topic.
+// An entry: a path, or {path, name, topic, fixed, pose, initial_pose, initial_pose_sigma}; a
+// bag entry without `topic` lists every map topic.
 struct MapEntry {
   MapInput input;
   YamlField entry;
   YamlField name;
   bool fixed = false;
   Pose2 T_merged_map;
+  std::optional<PosePrior> prior;
 };
 
 constexpr char kPoseExpected[] = "[x, y, yaw]: a list of 3 finite numbers (m, m, rad)";
+constexpr char kSigmaExpected[] =
+    "[metres, radians]: a list of 2 finite numbers > 0 (the prior's translation and yaw sigma)";
 
-// A fixed map's `pose`: its map frame in the merged frame, as map_server's `origin` is written.
-Pose2 ReadPose(const YamlField& field, const YamlErrors& errors) {
-  if (!field.value.IsSequence() || field.value.size() != 3) {
-    FailExpected(field, kPoseExpected, errors);
+// A list of `count` finite numbers (positive ones if `positive`); `key` and `expected` name the
+// list in an element's error.
+std::vector<double> ReadNumbers(const YamlField& field, std::size_t count, const char* key,
+                                const char* expected, bool positive, const YamlErrors& errors) {
+  if (!field.value.IsSequence() || field.value.size() != count) {
+    FailExpected(field, expected, errors);
   }
-  double xyz[3];
-  for (std::size_t i = 0; i < 3; ++i) {
+  std::vector<double> numbers;
+  for (std::size_t i = 0; i < count; ++i) {
     const YamlField element = ListElement(field, i);
     double value = 0.0;
     if (!element.value.IsScalar() || element.value.Tag() == "!" ||
-        !YAML::convert<double>::decode(element.value, value) || !std::isfinite(value)) {
-      FailExpected(element, std::string("a finite number (pose is ") + kPoseExpected + ")", errors);
+        !YAML::convert<double>::decode(element.value, value) || !std::isfinite(value) ||
+        (positive && !(value > 0.0))) {
+      FailExpected(element,
+                   std::string(positive ? "a finite number > 0 (" : "a finite number (") + key +
+                       " is " + expected + ")",
+                   errors);
     }
-    xyz[i] = value;
+    numbers.push_back(value);
   }
+  return numbers;
+}
+
+// A fixed map's `pose` or a map's `initial_pose`: its map frame in the merged frame, as
+// map_server's `origin` is written.
+Pose2 ReadPose(const YamlField& field, const char* key, const YamlErrors& errors) {
+  const std::vector<double> xyz = ReadNumbers(field, 3, key, kPoseExpected, false, errors);
   return Pose2(xyz[0], xyz[1], xyz[2]);
 }
 
 MapEntry ReadMapEntry(const YamlField& entry, const fs::path& folder, const YamlErrors& errors) {
   const std::string expected =
-      "a map YAML or bag path, or a mapping {path, name, topic, fixed, pose}";
-  MapEntry listed{{}, entry, entry, false, Pose2()};
+      "a map YAML or bag path, or a mapping {path, name, topic, fixed, pose, initial_pose, "
+      "initial_pose_sigma}";
+  MapEntry listed{{}, entry, entry, false, Pose2(), std::nullopt};
   std::string source;
   if (entry.value.IsMap()) {
-    const YamlMapping map(entry, {"path", "name", "topic", "fixed", "pose"}, expected, errors);
+    const YamlMapping map(
+        entry, {"path", "name", "topic", "fixed", "pose", "initial_pose", "initial_pose_sigma"},
+        expected, errors);
     source =
         ReadString(map.Require("path", "a map YAML or bag path"), "a map YAML or bag path", errors);
     if (auto f = map.Find("name")) {
@@ -198,11 +217,31 @@ MapEntry ReadMapEntry(const YamlField& entry, const fs::path& folder, const Yaml
     }
     if (auto f = map.Find("fixed")) listed.fixed = ReadBool(*f, errors);
     if (auto f = map.Find("pose")) {
-      listed.T_merged_map = ReadPose(*f, errors);
+      listed.T_merged_map = ReadPose(*f, "pose", errors);
       if (!listed.fixed) {
         errors.Fail(f->key, f->line,
-                    "'pose' is the pose of a fixed map; add 'fixed: true' or remove 'pose'");
+                    "'pose' is the pose of a fixed map; add 'fixed: true' or remove 'pose' "
+                    "(a robot's known start pose is 'initial_pose')");
       }
+    }
+    if (auto f = map.Find("initial_pose")) {
+      listed.prior = PosePrior{ReadPose(*f, "initial_pose", errors)};
+      if (listed.fixed) {
+        errors.Fail(f->key, f->line,
+                    "a fixed map's pose is its 'pose', exactly; remove 'initial_pose' or "
+                    "'fixed: true'");
+      }
+    }
+    if (auto f = map.Find("initial_pose_sigma")) {
+      const std::vector<double> sigma =
+          ReadNumbers(*f, 2, "initial_pose_sigma", kSigmaExpected, true, errors);
+      if (!listed.prior) {
+        errors.Fail(f->key, f->line,
+                    "'initial_pose_sigma' is the uncertainty of an 'initial_pose'; add "
+                    "'initial_pose: [x, y, yaw]' or remove 'initial_pose_sigma'");
+      }
+      listed.prior->translation_sigma_m = sigma[0];
+      listed.prior->yaw_sigma_rad = sigma[1];
     }
   } else {
     source = ReadString(entry, expected, errors);
@@ -226,6 +265,7 @@ std::vector<ListedMap> ExpandEntry(const MapEntry& entry, const YamlErrors& erro
         map.name = entry.input.name;  // names are given over the whole list (ReadMaps)
         map.fixed = entry.fixed;
         map.T_merged_map = entry.T_merged_map;
+        map.prior = entry.prior;
         maps.push_back({std::move(map), Canonical(path), entry.entry, entry.name});
       }
     } else {
@@ -234,11 +274,11 @@ std::vector<ListedMap> ExpandEntry(const MapEntry& entry, const YamlErrors& erro
       } else {
         ReadMapYaml(path);
       }
-      maps.push_back(
-          {{entry.input.name, entry.input.source, path, "", entry.fixed, entry.T_merged_map},
-           Canonical(path),
-           entry.entry,
-           entry.name});
+      maps.push_back({{entry.input.name, entry.input.source, path, "", entry.fixed,
+                       entry.T_merged_map, entry.prior},
+                      Canonical(path),
+                      entry.entry,
+                      entry.name});
     }
   } catch (const Error& e) {
     errors.Fail(entry.entry.key, entry.entry.line, e.what());

@@ -52,7 +52,7 @@ std::vector<JobMap> ExpandMapInputs(const std::vector<MapInput>& inputs) {
         }
       }
       canonical.push_back(c);
-      maps.push_back({input.name, input.source, input.path, topic, false, Pose2()});
+      maps.push_back({input.name, input.source, input.path, topic, false, Pose2(), std::nullopt});
       if (input.name.empty()) {
         unnamed.push_back({NamingPath(input.path), topics.size() > 1 ? topic : ""});
         unnamed_index.push_back(maps.size() - 1);

@@ -3,11 +3,13 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/pose2.hpp"
 #include "job/fleet_options.hpp"
+#include "job/pose_prior.hpp"
 
 namespace fleetmerge {
 
@@ -19,6 +21,8 @@ struct JobMap {
   // A fixed (base) map never moves: T_merged_map is its given pose in the merged frame.
   bool fixed = false;
   Pose2 T_merged_map;
+  // A known start pose (job file keys initial_pose, initial_pose_sigma), or none.
+  std::optional<PosePrior> prior;
 };
 
 struct Job {

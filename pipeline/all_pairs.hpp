@@ -25,6 +25,7 @@ struct PairOutcome {
   bool ambiguous = false;                  // PairResult's: the runner-up is as good
   bool accepted = false;                   // an edge of the final pose graph
   int edge_hypothesis = -1;                // the hypothesis the edge uses (0 = the best)
+  bool refused_by_priors = false;          // every hypothesis contradicts the known start poses
   std::string note;                        // why it was rejected or replaced
   double best_omega() const { return hypotheses.empty() ? 0.0 : hypotheses.front().omega; }
 };

@@ -10,7 +10,7 @@ namespace {
 
 PoseGraphEdge EdgeOf(const PairOutcome& pair) {
   const PairHypothesis& h = pair.hypotheses[pair.edge_hypothesis];
-  return {pair.a, pair.b, h.T_a_b, h.omega};
+  return {pair.a, pair.b, h.T_a_b, h.omega, 0.0, 0.0};
 }
 
 std::vector<PoseGraphEdge> EdgesOf(const std::vector<PairOutcome>& pairs) {
@@ -49,16 +49,26 @@ std::vector<int> Components(int map_count, const std::vector<PairOutcome>& pairs
 namespace {
 
 bool IsFixed(const FixedPoses& fixed, int m) { return !fixed.empty() && fixed[m].has_value(); }
+bool HasPrior(const PosePriors& priors, int m) { return !priors.empty() && priors[m].has_value(); }
 
-// Components() with every fixed map in the component of the first one, renumbered by first map.
+// The maps whose poses are known in the site frame (fixed maps and maps with a prior).
+struct Known {
+  const FixedPoses& fixed;
+  const PosePriors& priors;
+  bool any(int m) const { return IsFixed(fixed, m) || HasPrior(priors, m); }
+};
+
+// Components() with every map of `tied` in the component of the first one, renumbered by first
+// map.
+template <typename Tied>
 std::vector<int> TiedComponents(int map_count, const std::vector<PairOutcome>& pairs,
-                                const FixedPoses& fixed) {
+                                const Tied& tied_map) {
   std::vector<int> component = Components(map_count, pairs);
   int tied = -1;
   std::vector<int> merged(map_count);
   std::iota(merged.begin(), merged.end(), 0);
   for (int m = 0; m < map_count; ++m) {
-    if (!IsFixed(fixed, m)) continue;
+    if (!tied_map(m)) continue;
     if (tied < 0) tied = component[m];
     merged[component[m]] = tied;
   }
@@ -72,24 +82,55 @@ std::vector<int> TiedComponents(int map_count, const std::vector<PairOutcome>& p
   return out;
 }
 
-// Poses in `reference`'s frame. When `reference` is fixed, every fixed map is held at its given
-// pose relative to it.
+// Components with the fixed maps tied (their poses) and the maps with priors tied (node S).
+std::vector<int> SiteComponents(int map_count, const std::vector<PairOutcome>& pairs,
+                                const Known& known) {
+  return TiedComponents(map_count, pairs, [&](int m) { return known.any(m); });
+}
+
+// The component of the maps with known poses, or -1.
+int SiteComponent(const std::vector<int>& component_of, const Known& known) {
+  for (int m = 0; m < static_cast<int>(component_of.size()); ++m) {
+    if (known.any(m)) return component_of[m];
+  }
+  return -1;
+}
+
+// Poses of the maps. For the site component (that of the maps with known poses, when
+// `in_site`): in the site frame, with node S (index map_count) and every fixed map held at their
+// poses, and one edge S -> m per prior. Else in `reference`'s frame, which is held at identity.
 std::vector<std::optional<Pose2>> Solve(int map_count, const std::vector<PairOutcome>& pairs,
                                         int reference, const PoseGraphOptions& options,
-                                        const FixedPoses& fixed) {
-  const auto edges = EdgesOf(pairs);
-  if (!IsFixed(fixed, reference)) {
+                                        const Known& known, bool in_site) {
+  auto edges = EdgesOf(pairs);
+  if (!in_site) {
     return OptimizePoseGraph(SpanningTreePoses(map_count, edges, reference), edges, reference,
                              options);
   }
-  std::vector<std::optional<Pose2>> anchors(map_count);
-  std::vector<bool> constant(map_count, false);
+  const int site = map_count;
+  std::vector<std::optional<Pose2>> anchors(map_count + 1);
+  std::vector<bool> constant(map_count + 1, false);
+  anchors[site] = Pose2();
+  constant[site] = true;
+  // The spanning tree sees the prior edges at omega 0, below any pair's: it places a map by its
+  // pairs where it has any, by its prior only where it has none. In the solve a prior weighs by
+  // its own sigmas (omega 1).
+  auto tree_edges = edges;
   for (int m = 0; m < map_count; ++m) {
-    if (!IsFixed(fixed, m)) continue;
-    anchors[m] = fixed[reference]->inverse() * *fixed[m];
-    constant[m] = true;
+    if (IsFixed(known.fixed, m)) {
+      anchors[m] = *known.fixed[m];
+      constant[m] = true;
+    } else if (HasPrior(known.priors, m)) {
+      const PosePrior& p = *known.priors[m];
+      edges.push_back({site, m, p.T_site_map, 1.0, p.translation_sigma_m, p.yaw_sigma_rad});
+      tree_edges.push_back(edges.back());
+      tree_edges.back().omega = 0.0;
+    }
   }
-  return OptimizePoseGraph(SpanningTreePoses(map_count, edges, anchors), edges, constant, options);
+  auto poses = OptimizePoseGraph(SpanningTreePoses(map_count + 1, tree_edges, anchors), edges,
+                                 constant, options);
+  poses.resize(map_count);
+  return poses;
 }
 
 // Disagreement of an edge with the poses, in units of the tolerances (> 1: inconsistent).
@@ -104,8 +145,8 @@ double Violation(const PoseGraphEdge& edge, const std::vector<std::optional<Pose
 // Takes out the worst inconsistent edge of the component of `reference`; returns false when
 // every edge agrees with the poses.
 bool FixWorstEdge(int map_count, std::vector<PairOutcome>& pairs, int reference,
-                  const PoseGraphOptions& options, const FixedPoses& fixed) {
-  const auto poses = Solve(map_count, pairs, reference, options, fixed);
+                  const PoseGraphOptions& options, const Known& known, bool in_site) {
+  const auto poses = Solve(map_count, pairs, reference, options, known, in_site);
   int worst = -1;
   double worst_violation = 1.0;
   for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
@@ -117,10 +158,10 @@ bool FixWorstEdge(int map_count, std::vector<PairOutcome>& pairs, int reference,
   PairOutcome& pair = pairs[worst];
   const int rejected_hypothesis = pair.edge_hypothesis;
   pair.accepted = false;
-  const auto without = Solve(map_count, pairs, reference, options, fixed);
+  const auto without = Solve(map_count, pairs, reference, options, known, in_site);
   for (int h = 0; h < static_cast<int>(pair.hypotheses.size()); ++h) {
     if (h == rejected_hypothesis) continue;
-    const PoseGraphEdge candidate{pair.a, pair.b, pair.hypotheses[h].T_a_b, 1.0};
+    const PoseGraphEdge candidate{pair.a, pair.b, pair.hypotheses[h].T_a_b, 1.0, 0.0, 0.0};
     if (without[pair.a] && without[pair.b] && Violation(candidate, without, options) <= 1.0) {
       pair.accepted = true;
       pair.edge_hypothesis = h;
@@ -225,23 +266,43 @@ int ComponentReference(const std::vector<int>& component_of, int c, int referenc
 
 }  // namespace
 
+const char* PlacedByName(PlacedBy placed_by) {
+  switch (placed_by) {
+    case PlacedBy::kFixed:
+      return "fixed";
+    case PlacedBy::kReference:
+      return "reference";
+    case PlacedBy::kPairs:
+      return "pairs";
+    case PlacedBy::kPrior:
+      return "prior";
+    case PlacedBy::kUnmerged:
+      break;
+  }
+  return "unmerged";
+}
+
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
-                           const PoseGraphOptions& options, const FixedPoses& fixed) {
+                           const PoseGraphOptions& options, const FixedPoses& fixed,
+                           const PosePriors& priors) {
   FleetGraph graph;
+  const Known known{fixed, priors};
   ResolveTriangleConflicts(map_count, pairs, options);
   // Longer cycles: solve, take out the worst edge, repeat. Each fix removes or replaces one edge,
   // so this ends; the bound is for safety.
   for (std::size_t round = 0; round <= 2 * pairs.size(); ++round) {
-    graph.component_of = TiedComponents(map_count, pairs, fixed);
+    graph.component_of = SiteComponents(map_count, pairs, known);
+    const int site = SiteComponent(graph.component_of, known);
     bool changed = false;
     for (int c = 0, n = 1 + *std::max_element(graph.component_of.begin(), graph.component_of.end());
          c < n && !changed; ++c) {
       changed = FixWorstEdge(map_count, pairs, ComponentReference(graph.component_of, c, reference),
-                             options, fixed);
+                             options, known, c == site);
     }
     if (!changed) break;
   }
-  graph.component_of = TiedComponents(map_count, pairs, fixed);
+  graph.component_of = SiteComponents(map_count, pairs, known);
+  const int site = SiteComponent(graph.component_of, known);
   const int components =
       1 + *std::max_element(graph.component_of.begin(), graph.component_of.end());
   graph.component_reference.assign(components, -1);
@@ -249,13 +310,29 @@ FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int r
   for (int c = 0; c < components; ++c) {
     const int ref = ComponentReference(graph.component_of, c, reference);
     graph.component_reference[c] = ref;
-    const auto poses = Solve(map_count, pairs, ref, options, fixed);
-    // The fixed maps' component has the merged frame: their reference sits at its given pose.
-    const Pose2 T_component_ref = IsFixed(fixed, ref) ? *fixed[ref] : Pose2();
+    // The site component's poses are in the site frame (the fixed maps' frame): the merged frame.
+    const auto poses = Solve(map_count, pairs, ref, options, known, c == site);
     for (int m = 0; m < map_count; ++m) {
-      if (graph.component_of[m] == c && poses[m]) {
-        graph.T_component_map[m] = T_component_ref * *poses[m];
-      }
+      if (graph.component_of[m] == c && poses[m]) graph.T_component_map[m] = *poses[m];
+    }
+  }
+  // Which maps the pairs alone (with the fixed maps' ties) link to their component's reference.
+  const std::vector<int> by_pairs =
+      TiedComponents(map_count, pairs, [&](int m) { return IsFixed(fixed, m); });
+  std::vector<int> component_size(components, 0);
+  for (const int c : graph.component_of) ++component_size[c];
+  graph.placed_by.assign(map_count, PlacedBy::kPairs);
+  for (int m = 0; m < map_count; ++m) {
+    const int ref = graph.component_reference[graph.component_of[m]];
+    PlacedBy& placed = graph.placed_by[m];
+    if (IsFixed(fixed, m)) {
+      placed = PlacedBy::kFixed;
+    } else if (component_size[graph.component_of[m]] == 1) {
+      placed = PlacedBy::kUnmerged;
+    } else if (m == ref) {
+      placed = PlacedBy::kReference;
+    } else if (by_pairs[m] != by_pairs[ref]) {
+      placed = PlacedBy::kPrior;
     }
   }
   return graph;

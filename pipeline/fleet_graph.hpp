@@ -13,15 +13,27 @@
 #include <optional>
 #include <vector>
 
+#include "job/pose_prior.hpp"
 #include "pipeline/all_pairs.hpp"
 #include "refine/pose_graph.hpp"
 
 namespace fleetmerge {
 
+// What put a map where it is in its component's frame.
+enum class PlacedBy {
+  kFixed,      // a fixed map: at its given pose
+  kReference,  // its component's reference map (its frame, or the site frame with priors)
+  kPairs,      // accepted pairs link it to its component's reference (or to a fixed map)
+  kPrior,      // only its known start pose links it to the rest of its component
+  kUnmerged,   // alone in its component
+};
+const char* PlacedByName(PlacedBy placed_by);  // "fixed", "reference", "pairs", ...
+
 struct FleetGraph {
   std::vector<int> component_of;         // per map, components numbered in map order
-  std::vector<int> component_reference;  // per component: the map with the identity pose
+  std::vector<int> component_reference;  // per component: the map whose frame or cells it keeps
   std::vector<Pose2> T_component_map;    // per map: its frame in its component's frame
+  std::vector<PlacedBy> placed_by;       // per map
 };
 
 // Per map, its component under the accepted pairs (all but pairs[skip_pair]), numbered by their
@@ -39,7 +51,18 @@ using FixedPoses = std::vector<std::optional<Pose2>>;
 // their given poses tie them. They are all held at their poses in the pose graph, so an edge
 // that contradicts those poses is the one that disagrees with its cycles and is rejected; the
 // fixed maps' component has the merged frame (T_component_map of a fixed map is its pose).
+//
+// Known start poses (`priors`, job/pose_prior.hpp) are all given in one site frame: the graph
+// gets a node S for that frame and one edge S -> m per map with a prior, measured as the prior
+// with the prior's own sigmas. With fixed maps S is their frame, held at the identity; without,
+// S is held at the identity all the same, so the component that holds the priors has the site
+// frame (a map's pose there is comparable with its prior). S links every map with a prior, so
+// those maps form one component (with the fixed maps) even where no pair links them: a map that
+// overlaps no other is placed at its prior (PlacedBy::kPrior). Prior edges are never taken out
+// by the cycle checks: the pairs that contradict the priors were dropped before
+// (pipeline/pose_priors.hpp). Without priors and fixed maps nothing of this applies.
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
-                           const PoseGraphOptions& options, const FixedPoses& fixed = {});
+                           const PoseGraphOptions& options, const FixedPoses& fixed = {},
+                           const PosePriors& priors = {});
 
 }  // namespace fleetmerge

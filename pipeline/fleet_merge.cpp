@@ -12,6 +12,7 @@
 #include "pipeline/composite.hpp"
 #include "pipeline/corroboration.hpp"
 #include "pipeline/fleet_graph.hpp"
+#include "pipeline/pose_priors.hpp"
 #include "pipeline/weak_bridges.hpp"
 
 namespace fleetmerge {
@@ -43,6 +44,11 @@ std::vector<OccupancyGrid> AtOneResolution(const std::vector<const OccupancyGrid
 
 void AcceptByThreshold(std::vector<PairOutcome>& pairs, const FleetOptions& options) {
   for (PairOutcome& p : pairs) {
+    if (p.refused_by_priors) {  // its note says which priors it contradicts
+      p.accepted = false;
+      p.edge_hypothesis = -1;
+      continue;
+    }
     p.accepted = p.best_omega() >= options.omega_threshold &&
                  p.overlap_cells >= options.min_overlap_cells &&
                  p.wall_agreement >= options.min_wall_agreement;
@@ -58,8 +64,10 @@ void AcceptByThreshold(std::vector<PairOutcome>& pairs, const FleetOptions& opti
 }
 
 // Rejects every accepted edge across `split`: the maps on its two sides that overlap under the
-// solved poses contradict each other (pipeline/corroboration.hpp).
-void CutSplit(const ComponentSplit& split, std::vector<PairOutcome>& pairs) {
+// solved poses contradict each other (pipeline/corroboration.hpp). Returns whether it cut any:
+// maps tied by their known poses (fixed, or priors) have no edge between them to cut.
+bool CutSplit(const ComponentSplit& split, std::vector<PairOutcome>& pairs) {
+  bool cut = false;
   std::string names;
   for (const int m : split.detached) names += (names.empty() ? "" : ", ") + std::to_string(m + 1);
   const auto detached = [&](int m) {
@@ -72,7 +80,9 @@ void CutSplit(const ComponentSplit& split, std::vector<PairOutcome>& pairs) {
     p.note = "rejected: the placement of map(s) " + names + " is contradicted by " +
              std::to_string(split.conflicts) + " of the pairs that then overlap, supported by " +
              std::to_string(split.supporters);
+    cut = true;
   }
+  return cut;
 }
 
 // Rejects a bridge edge whose walls are below the lone-link standard (pipeline/weak_bridges.hpp).
@@ -168,11 +178,18 @@ void CheckFixed(const FixedPoses& fixed, std::size_t map_count, int reference) {
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
                        const FixedPoses& fixed, const FleetOptions& options,
                        const ProgressFn& progress) {
+  return MergeFleet(maps, reference, fixed, PosePriors{}, options, progress);
+}
+
+FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
+                       const FixedPoses& fixed, const PosePriors& priors,
+                       const FleetOptions& options, const ProgressFn& progress) {
   if (maps.empty()) throw Error("a fleet-merging job needs at least one map");
   if (reference < 0 || reference >= static_cast<int>(maps.size())) {
     throw Error("the reference map index is out of range");
   }
   CheckFixed(fixed, maps.size(), reference);
+  CheckPriors(priors, fixed, maps.size());
   FleetResult result;
   result.resolution_m = options.resolution_m;
   if (!(result.resolution_m > 0.0)) {  // default: the finest of the maps
@@ -191,9 +208,10 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   result.timing.pairs_ms = MillisecondsSince(start);
 
   start = std::chrono::steady_clock::now();
+  DropHypothesesAgainstPriors(result.pairs, fixed, priors);
   AcceptByThreshold(result.pairs, options);
   FleetGraph graph = SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference,
-                                     options.pose_graph, fixed);
+                                     options.pose_graph, fixed, priors);
   std::vector<MapWalls> walls;  // made once: every round judges the pairs again
   walls.reserve(result.maps.size());
   for (const OccupancyGrid& map : result.maps) walls.emplace_back(map);
@@ -211,15 +229,15 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
         RejectUnconfirmedAmbiguous(result.pairs[*ambiguous]);
       } else {
         const auto split = MostContradictedSplit(verdicts, graph.component_of);
-        if (!split) break;
-        CutSplit(*split, result.pairs);
+        if (!split || !CutSplit(*split, result.pairs)) break;
       }
     }
     graph = SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference,
-                            options.pose_graph, fixed);
+                            options.pose_graph, fixed, priors);
   }
   result.component_of = graph.component_of;
   result.T_component_map = graph.T_component_map;
+  result.placed_by = graph.placed_by;
   result.timing.refine_ms = MillisecondsSince(start);
   if (progress) progress("refine", 1, 1);
 

@@ -31,6 +31,7 @@ struct FleetResult {
   std::vector<OccupancyGrid> maps;     // the inputs at resolution_m
   std::vector<int> component_of;       // per map
   std::vector<Pose2> T_component_map;  // per map: its map frame in its component's frame
+  std::vector<PlacedBy> placed_by;     // per map: what put it there (pipeline/fleet_graph.hpp)
   std::vector<FleetComponent> components;
   std::vector<PairOutcome> pairs;  // every pair a < b
   FleetTiming timing;
@@ -49,5 +50,15 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
                        const FixedPoses& fixed, const FleetOptions& options,
                        const ProgressFn& progress = {});
+
+// With known start poses too: `priors` holds, per map, its prior (job/pose_prior.hpp) or nullopt
+// (empty: none has one). Hypotheses that contradict two maps' known poses are dropped and a pair
+// left with none is refused (pipeline/pose_priors.hpp); the priors join the pose graph, so a map
+// with a prior that overlaps no other is placed at it (pipeline/fleet_graph.hpp), and the
+// component holding the priors has their site frame. Throws fleetmerge::Error as above, and for
+// a prior list of another length, a non-finite prior, a sigma <= 0 or a prior on a fixed map.
+FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
+                       const FixedPoses& fixed, const PosePriors& priors,
+                       const FleetOptions& options, const ProgressFn& progress = {});
 
 }  // namespace fleetmerge

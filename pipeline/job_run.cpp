@@ -174,8 +174,14 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     fixed.resize(job.maps.size());
     fixed[m] = job.maps[m].T_merged_map;
   }
+  PosePriors priors;  // empty unless a map has a known start pose
+  for (std::size_t m = 0; m < job.maps.size(); ++m) {
+    if (!job.maps[m].prior) continue;
+    priors.resize(job.maps.size());
+    priors[m] = job.maps[m].prior;
+  }
   JobOutcome outcome;
-  outcome.result = MergeFleet(grids, reference, fixed, job.options, options.progress);
+  outcome.result = MergeFleet(grids, reference, fixed, priors, job.options, options.progress);
   const FleetResult& result = outcome.result;
 
   const auto write_start = Clock::now();

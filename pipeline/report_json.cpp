@@ -49,11 +49,17 @@ nlohmann::json MakeReport(const Job& job, const FleetResult& result,
   report["resolution"] = result.resolution_m;
   report["maps"] = nlohmann::json::array();
   for (std::size_t m = 0; m < job.maps.size(); ++m) {
-    report["maps"].push_back({{"name", job.maps[m].name},
-                              {"source", job.maps[m].source.generic_string()},
-                              {"component", result.component_of[m]},
-                              {"pose", PoseJson(result.T_component_map[m])},
-                              {"fixed", job.maps[m].fixed}});
+    nlohmann::json map = {{"name", job.maps[m].name},
+                          {"source", job.maps[m].source.generic_string()},
+                          {"component", result.component_of[m]},
+                          {"pose", PoseJson(result.T_component_map[m])},
+                          {"fixed", job.maps[m].fixed},
+                          {"placed_by", PlacedByName(result.placed_by[m])}};
+    if (const auto& prior = job.maps[m].prior) {
+      map["initial_pose"] = PoseJson(prior->T_site_map);
+      map["initial_pose_sigma"] = {prior->translation_sigma_m, prior->yaw_sigma_rad};
+    }
+    report["maps"].push_back(map);
   }
   report["components"] = nlohmann::json::array();
   for (std::size_t c = 0; c < result.components.size(); ++c) {

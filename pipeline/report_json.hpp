@@ -2,11 +2,16 @@
 // (fields may be added):
 //   maps[]: name, source, component, pose {x, y, yaw} (the map frame in its component's merged
 //           frame; the component's reference map has the identity, a fixed map its given
-//           pose), fixed (a base map that never moves: the job's `fixed`)
+//           pose; with priors, the site frame's), fixed (a base map that never moves: the
+//           job's `fixed`), placed_by ("fixed", "reference", "pairs", "prior" or "unmerged":
+//           pipeline/fleet_graph.hpp, PlacedBy), initial_pose {x, y, yaw} and
+//           initial_pose_sigma [m, rad] (a map with a known start pose)
 //   components[]: id, maps (names), merged_map (file name; absent for an unmerged map)
 //   pairs[]: a, b, omega (best), accepted, overlap_cells, wall_agreement (best), ambiguous,
 //            margin (nats; null without a runner-up: core/pose_evidence.hpp), hypotheses [{x,
-//            y, yaw, omega, overlap_cells, wall_agreement}] (b's frame in a's, best first)
+//            y, yaw, omega, overlap_cells, wall_agreement}] (b's frame in a's, best first),
+//            edge_hypothesis (accepted), note (why rejected or replaced; a pair whose
+//            hypotheses all contradict the priors: "refused: ...", pipeline/pose_priors.hpp)
 //   timing_ms: load, pairs, refine, composite, write, total; report_html (writing report.html,
 //              pipeline/html_report.hpp, after `total` was taken) when the set is written
 // Jobs with octrees add (pipeline/octree_maps.hpp, AddOctreesToReport): maps[].pose.z and

@@ -45,6 +45,42 @@ fleetmerge::Pose2D PoseFrom(const py::handle& pose, const std::string& what) {
 
 fleetmerge::Pose2D OriginFrom(const py::handle& origin) { return PoseFrom(origin, "origin"); }
 
+// initial_pose: None or (x, y, yaw); initial_pose_sigma: None (the defaults) or (metres, radians),
+// only with an initial_pose.
+void SetInitialPose(fleetmerge::Map& map, const py::object& pose, const py::object& sigma) {
+  if (pose.is_none()) {
+    if (!sigma.is_none()) {
+      ValueError(
+          "initial_pose_sigma is the uncertainty of an initial_pose; give initial_pose "
+          "(x, y, yaw) too");
+    }
+    map.clear_initial_pose();
+    return;
+  }
+  const fleetmerge::Pose2D p = PoseFrom(pose, "initial_pose");
+  double s[2] = {fleetmerge::Map::kDefaultInitialPoseSigmaM,
+                 fleetmerge::Map::kDefaultInitialPoseSigmaRad};
+  if (!sigma.is_none()) {
+    if (!py::isinstance<py::sequence>(sigma) || py::isinstance<py::str>(sigma) ||
+        py::len(sigma) != 2) {
+      ValueError("initial_pose_sigma must be (metres, radians): 2 finite numbers > 0");
+    }
+    const auto seq = py::reinterpret_borrow<py::sequence>(sigma);
+    for (int k = 0; k < 2; ++k) {
+      try {
+        s[k] = seq[k].cast<double>();
+      } catch (const py::cast_error&) {
+        ValueError("initial_pose_sigma[" + std::to_string(k) + "] must be a number");
+      }
+      if (!std::isfinite(s[k]) || !(s[k] > 0.0)) {
+        ValueError("initial_pose_sigma[" + std::to_string(k) + "] must be finite and > 0, got " +
+                   std::to_string(s[k]));
+      }
+    }
+  }
+  map.set_initial_pose(p, s[0], s[1]);
+}
+
 // A numpy int8 array, height x width, C-contiguous: OccupancyGrid's data reshaped.
 fleetmerge::Map MapFromArray(const py::handle& data, const py::handle& resolution,
                              const py::handle& origin, const std::string& name) {
@@ -111,14 +147,17 @@ PYBIND11_MODULE(_fleetmerge, m) {
   py::class_<fleetmerge::Map>(m, "Map")
       .def(py::init([](const py::object& data, const py::object& resolution,
                        const py::object& origin, const std::string& name, bool fixed,
-                       const py::object& pose) {
+                       const py::object& pose, const py::object& initial_pose,
+                       const py::object& initial_pose_sigma) {
              fleetmerge::Map map = MapFromArray(data, resolution, origin, name);
              map.set_fixed(fixed, PoseFrom(pose, "pose"));
+             SetInitialPose(map, initial_pose, initial_pose_sigma);
              return map;
            }),
            py::arg("data"), py::arg("resolution"), py::arg("origin") = py::make_tuple(0, 0, 0),
            py::arg("name") = "", py::kw_only(), py::arg("fixed") = false,
-           py::arg("pose") = py::make_tuple(0, 0, 0))
+           py::arg("pose") = py::make_tuple(0, 0, 0), py::arg("initial_pose") = py::none(),
+           py::arg("initial_pose_sigma") = py::none())
       .def_property_readonly("data", &ArrayOf, "cells, int8, height x width (a copy)")
       .def_property_readonly("resolution", &fleetmerge::Map::resolution)
       .def_property_readonly("origin",
@@ -136,6 +175,33 @@ PYBIND11_MODULE(_fleetmerge, m) {
             map.set_fixed(map.fixed(), PoseFrom(pose, "pose"));
           },
           "a fixed map's (x, y, yaw): its map frame in the merged frame")
+      .def_property(
+          "initial_pose",
+          [](const fleetmerge::Map& map) -> py::object {
+            if (!map.initial_pose()) return py::none();
+            return TupleOf(*map.initial_pose());
+          },
+          [](fleetmerge::Map& map, const py::object& pose) {
+            if (pose.is_none()) return map.clear_initial_pose();
+            SetInitialPose(
+                map, pose,
+                py::make_tuple(map.initial_pose_sigma_m(), map.initial_pose_sigma_rad()));
+          },
+          "a known start pose (x, y, yaw): the map frame in the site (merged) frame, or None")
+      .def_property(
+          "initial_pose_sigma",
+          [](const fleetmerge::Map& map) {
+            return py::make_tuple(map.initial_pose_sigma_m(), map.initial_pose_sigma_rad());
+          },
+          [](fleetmerge::Map& map, const py::object& sigma) {
+            if (!map.initial_pose()) {
+              ValueError(
+                  "initial_pose_sigma is the uncertainty of an initial_pose; set "
+                  "initial_pose first");
+            }
+            SetInitialPose(map, TupleOf(*map.initial_pose()), sigma);
+          },
+          "the initial pose's (metres, radians) sigmas; default (0.5, 10 deg)")
       .def("__repr__", [](const fleetmerge::Map& map) {
         return "<fleetmerge.Map '" + map.name() + "' " + std::to_string(map.width()) + "x" +
                std::to_string(map.height()) + " @ " + std::to_string(map.resolution()) + " m>";

@@ -21,8 +21,10 @@ struct RelativePoseResidual {
   RelativePoseResidual(const PoseGraphEdge& edge, const PoseGraphOptions& options)
       : p_ab(edge.T_a_b.translation_m()),
         yaw_ab(edge.T_a_b.yaw_rad()),
-        w_t(std::sqrt(edge.omega) / options.translation_sigma_m),
-        w_yaw(std::sqrt(edge.omega) / options.yaw_sigma_rad) {}
+        w_t(std::sqrt(edge.omega) / (edge.translation_sigma_m > 0.0 ? edge.translation_sigma_m
+                                                                    : options.translation_sigma_m)),
+        w_yaw(std::sqrt(edge.omega) /
+              (edge.yaw_sigma_rad > 0.0 ? edge.yaw_sigma_rad : options.yaw_sigma_rad)) {}
 
   // pose = (x_m, y_m, yaw_rad) of T_ref_node.
   template <typename T>

@@ -31,6 +31,10 @@ struct PoseGraphEdge {
   int a = 0, b = 0;
   Pose2 T_a_b;         // pose of b's frame in a's frame
   double omega = 1.0;  // weight
+  // The edge's own sigmas (a pose prior's); 0: PoseGraphOptions' translation_sigma_m and
+  // yaw_sigma_rad, the expected error of a pair's hypothesis.
+  double translation_sigma_m = 0.0;
+  double yaw_sigma_rad = 0.0;
 };
 
 // Poses T_ref_node of every node reached from `reference` by composing edges along a maximum-

@@ -71,6 +71,38 @@ TEST(Api, FixedMapsKeepTheirPose) {
   EXPECT_THROW(fleetmerge::Merge({robot, base}, options), std::invalid_argument);
 }
 
+TEST(Api, AMapThatPairsWithNoneIsPlacedAtItsInitialPose) {
+  fleetmerge::Map base({0, 100, 0, 100}, 2, 2, 0.05, {}, "base");
+  base.set_fixed(true, {1.5, -2.0, 0.3});
+  fleetmerge::Map robot({100, 0, 100, 0}, 2, 2, 0.05, {}, "robot");
+  EXPECT_FALSE(robot.initial_pose().has_value());
+  EXPECT_THROW(robot.set_initial_pose({0.0, 0.0, std::nan("")}), std::invalid_argument);
+  EXPECT_THROW(robot.set_initial_pose({0.0, 0.0, 0.0}, -0.5), std::invalid_argument);
+  EXPECT_THROW(robot.set_initial_pose({0.0, 0.0, 0.0}, 0.5, 0.0), std::invalid_argument);
+  EXPECT_FALSE(robot.initial_pose().has_value());  // unchanged by the refused calls
+  robot.set_initial_pose({4.0, 1.0, -0.2});
+  EXPECT_EQ(robot.initial_pose_sigma_m(), 0.5);  // the documented defaults
+  EXPECT_NEAR(robot.initial_pose_sigma_rad(), 10.0 * M_PI / 180.0, 1e-15);
+  // Too small to pair: without its prior the robot would be alone; with it, it joins the base's
+  // component at its prior, in the base's (the site's) frame.
+  const fleetmerge::MergeResult result = fleetmerge::Merge({base, robot});
+  ASSERT_EQ(result.maps.size(), 2u);
+  EXPECT_EQ(result.maps[0].placed_by, "fixed");
+  EXPECT_EQ(result.maps[1].placed_by, "prior");
+  EXPECT_EQ(result.maps[1].component, result.maps[0].component);
+  EXPECT_NEAR(result.maps[1].pose.x, 4.0, 1e-9);
+  EXPECT_NEAR(result.maps[1].pose.y, 1.0, 1e-9);
+  EXPECT_NEAR(result.maps[1].pose.yaw, -0.2, 1e-9);
+  EXPECT_NE(result.report_json.find("\"placed_by\": \"prior\""), std::string::npos);
+  robot.clear_initial_pose();
+  const fleetmerge::MergeResult alone = fleetmerge::Merge({base, robot});
+  EXPECT_EQ(alone.maps[1].placed_by, "unmerged");
+  EXPECT_NE(alone.maps[1].component, alone.maps[0].component);
+  // A fixed map has its pose exactly: an initial pose on it is refused.
+  base.set_initial_pose({0.0, 0.0, 0.0});
+  EXPECT_THROW(fleetmerge::Merge({base, robot}), std::invalid_argument);
+}
+
 TEST(Api, EmptyMapAndBadOptionsAreInvalidArguments) {
   const fleetmerge::Map empty;
   const fleetmerge::Map map({0, 100, 0, 100}, 2, 2, 0.05);

@@ -42,7 +42,8 @@ const Job& EightMapJob() {
     for (std::size_t m = 0; m < fleet.maps.size(); ++m) {
       const auto path = dir / ("robot_" + std::to_string(m) + ".yaml");
       SaveMap(fleet.maps[m], path);
-      j.maps.push_back({path.stem().string(), path, path, /*topic=*/""});
+      j.maps.push_back(
+          {path.stem().string(), path, path, /*topic=*/"", false, Pose2(), std::nullopt});
       std::fprintf(stderr, "robot_%zu: %d x %d cells\n", m, fleet.maps[m].width(),
                    fleet.maps[m].height());
     }

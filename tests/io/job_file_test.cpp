@@ -375,7 +375,8 @@ TEST_F(JobFileTest, MissingKeysAndEmptyLists) {
   ExpectError("maps: maps/a.yaml\noutput: out\n", 1, "maps", "got 'maps/a.yaml'");
   ExpectError("maps:\n  - name: first\noutput: out\n", 2, "maps[0].path", "missing");
   ExpectError("maps:\n  - [maps/a.yaml]\noutput: out\n", 2, "maps[0]",
-              "expected a map YAML or bag path, or a mapping {path, name, topic, fixed, pose}");
+              "expected a map YAML or bag path, or a mapping {path, name, topic, fixed, pose, "
+              "initial_pose, initial_pose_sigma}");
   ExpectError("jobs: []\n", 1, "jobs", "expected a non-empty list of jobs");
   ExpectError("jobs: 3\n", 1, "jobs", "expected a non-empty list of jobs, got '3'");
   ExpectError("jobs:\n  - maps.yaml\n", 2, "jobs[0]", "expected a job");
@@ -458,6 +459,73 @@ TEST_F(JobFileTest, FixedMapErrorsNameTheKey) {
       5, "reference", "expected the first fixed map 'b'");
 }
 
+TEST_F(JobFileTest, MapsMayHaveAKnownStartPose) {
+  const std::vector<Job> jobs = Load(
+      "maps:\n  - {path: maps/a.yaml, fixed: true, pose: [1, 2, 0.5]}\n"
+      "  - {path: maps/b.yaml, initial_pose: [12.5, -3, 0.25]}\n"
+      "  - {path: maps/c.yaml, initial_pose: [0, 1, -3], initial_pose_sigma: [0.2, 0.05]}\n"
+      "output: out\n");
+  ASSERT_EQ(jobs.size(), 1u);
+  const Job& job = jobs[0];
+  ASSERT_EQ(job.maps.size(), 3u);
+  EXPECT_FALSE(job.maps[0].prior.has_value());  // a fixed map's pose is exact
+  ASSERT_TRUE(job.maps[1].prior.has_value());
+  EXPECT_EQ(job.maps[1].prior->T_site_map.x_m(), 12.5);
+  EXPECT_EQ(job.maps[1].prior->T_site_map.y_m(), -3.0);
+  EXPECT_EQ(job.maps[1].prior->T_site_map.yaw_rad(), 0.25);
+  // Default sigmas: 0.5 m and 10 deg.
+  EXPECT_EQ(job.maps[1].prior->translation_sigma_m, 0.5);
+  EXPECT_NEAR(job.maps[1].prior->yaw_sigma_rad, 10.0 * M_PI / 180.0, 1e-15);
+  ASSERT_TRUE(job.maps[2].prior.has_value());
+  EXPECT_EQ(job.maps[2].prior->translation_sigma_m, 0.2);
+  EXPECT_EQ(job.maps[2].prior->yaw_sigma_rad, 0.05);
+  EXPECT_EQ(job.reference, "a");
+}
+
+TEST_F(JobFileTest, PriorErrorsNameTheKey) {
+  const std::string pose = "[x, y, yaw]: a list of 3 finite numbers (m, m, rad)";
+  const std::string sigma =
+      "[metres, radians]: a list of 2 finite numbers > 0 (the prior's translation and yaw sigma)";
+  ExpectError(
+      "maps:\n  - maps/a.yaml\n  - {path: maps/b.yaml, initial_pose: [1, .nan, 0]}\n"
+      "output: out\n",
+      3, "maps[1].initial_pose[1]",
+      "expected a finite number (initial_pose is " + pose + "), got '.nan'");
+  ExpectError("maps:\n  - {path: maps/a.yaml, initial_pose: [.inf, 0, 0]}\noutput: out\n", 2,
+              "maps[0].initial_pose[0]", "got '.inf'");
+  ExpectError("maps:\n  - {path: maps/a.yaml, initial_pose: [1, 2]}\noutput: out\n", 2,
+              "maps[0].initial_pose", "expected " + pose);
+  ExpectError("maps:\n  - {path: maps/a.yaml, initial_pose: 3}\noutput: out\n", 2,
+              "maps[0].initial_pose", "expected " + pose + ", got '3'");
+  ExpectError(
+      "maps:\n  - {path: maps/a.yaml, initial_pose: [0, 0, 0], initial_pose_sigma: [-0.5, 0.1]}\n"
+      "output: out\n",
+      2, "maps[0].initial_pose_sigma[0]",
+      "expected a finite number > 0 (initial_pose_sigma is " + sigma + "), got '-0.5'");
+  ExpectError(
+      "maps:\n  - {path: maps/a.yaml, initial_pose: [0, 0, 0], initial_pose_sigma: [0.5, 0]}\n"
+      "output: out\n",
+      2, "maps[0].initial_pose_sigma[1]", "expected a finite number > 0");
+  ExpectError(
+      "maps:\n  - {path: maps/a.yaml, initial_pose: [0, 0, 0], initial_pose_sigma: [0.5, .nan]}"
+      "\noutput: out\n",
+      2, "maps[0].initial_pose_sigma[1]", "got '.nan'");
+  ExpectError(
+      "maps:\n  - {path: maps/a.yaml, initial_pose: [0, 0, 0], initial_pose_sigma: [0.5]}\n"
+      "output: out\n",
+      2, "maps[0].initial_pose_sigma", "expected " + sigma);
+  ExpectError(
+      "maps:\n  - {path: maps/a.yaml, initial_pose: [0, 0, 0], initial_pose_sigma: 0.5}\n"
+      "output: out\n",
+      2, "maps[0].initial_pose_sigma", "expected " + sigma + ", got '0.5'");
+  ExpectError("maps:\n  - {path: maps/a.yaml, initial_pose_sigma: [0.5, 0.1]}\noutput: out\n", 2,
+              "maps[0].initial_pose_sigma", "add 'initial_pose: [x, y, yaw]'");
+  ExpectError("maps:\n  - {path: maps/a.yaml, fixed: true, initial_pose: [0, 0, 0]}\noutput: out\n",
+              2, "maps[0].initial_pose", "a fixed map's pose is its 'pose', exactly");
+  ExpectError("maps:\n  - {path: maps/a.yaml, initial_pos: [0, 0, 0]}\noutput: out\n", 2,
+              "maps[0].initial_pos", "allowed here: path, name, topic, fixed, pose, initial_pose");
+}
+
 TEST_F(JobFileTest, JobsHaveTheirOwnOutputAndName) {
   ExpectError(
       "jobs:\n  - maps: [maps/a.yaml]\n    output: out\n"
@@ -526,7 +594,13 @@ TEST(JobFileConfigsTest, ExamplesLoad) {
   EXPECT_EQ(fixed[0].maps[0].T_merged_map.x_m(), 10.0);
   EXPECT_EQ(fixed[0].reference, "site");
 
-  for (const auto& jobs : {four, large, mixed, fixed}) {
+  const std::vector<Job> priors = LoadJobFile(ConfigsDir() / "site_with_priors.yaml");
+  ASSERT_EQ(priors.size(), 1u);
+  ASSERT_EQ(priors[0].maps.size(), 4u);
+  EXPECT_TRUE(priors[0].maps[0].fixed);
+  for (std::size_t m = 1; m < 4; ++m) EXPECT_TRUE(priors[0].maps[m].prior.has_value()) << m;
+
+  for (const auto& jobs : {four, large, mixed, fixed, priors}) {
     for (const Job& job : jobs) {  // under the repository's (git-ignored) out/ folder
       EXPECT_EQ(job.output_dir.lexically_normal().parent_path(),
                 (fs::path(FLEETMERGE_SOURCE_DIR) / "out").lexically_normal())
@@ -567,7 +641,10 @@ TEST(JobFileConfigsTest, ReadmeDocumentsEveryKey) {
                           "mixed_resolutions.yaml",
                           "fixed",
                           "pose",
-                          "fixed_base.yaml"}) {
+                          "fixed_base.yaml",
+                          "initial_pose",
+                          "initial_pose_sigma",
+                          "site_with_priors.yaml"}) {
     EXPECT_TRUE(Contains(readme, std::string("`") + key)) << key;
   }
 }

@@ -81,7 +81,7 @@ TEST_P(ForeignOffice, ChanceEdgeIsDetachedAndTheBuildingStaysWhole) {
   for (const PairOutcome& p : c.result.pairs) {
     if (p.b != 4) continue;
     for (const PairHypothesis& h : p.hypotheses) {
-      FleetGraph forced{c.result.component_of, {}, c.result.T_component_map};
+      FleetGraph forced{c.result.component_of, {}, c.result.T_component_map, c.result.placed_by};
       forced.component_of[4] = forced.component_of[p.a];
       forced.T_component_map[4] = forced.T_component_map[p.a] * h.T_a_b;
       const auto verdicts =
@@ -100,7 +100,7 @@ TEST_P(ForeignOffice, ChanceEdgeIsDetachedAndTheBuildingStaysWhole) {
   EXPECT_EQ(split_off, contradicted);
 
   // After the step every map of the building is corroborated and the foreign one is alone.
-  FleetGraph graph{c.result.component_of, {}, c.result.T_component_map};
+  FleetGraph graph{c.result.component_of, {}, c.result.T_component_map, c.result.placed_by};
   // On two threads: the verdicts must not depend on the count.
   const auto verdicts =
       JudgeSolvedPairs(c.result.maps, walls, c.result.pairs, graph, defaults.min_overlap_cells,

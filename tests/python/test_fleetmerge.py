@@ -150,6 +150,49 @@ def test_a_fixed_map_never_moves_and_the_others_follow_it():
 
 
 @needs_maps
+def test_initial_poses_refuse_contradicting_pairs_and_place_maps():
+    base = fleetmerge.load_map(real("robotis_corridor_run2"))
+    robot = fleetmerge.load_map(real("robotis_corridor_run3"))
+    free = fleetmerge.merge([base, robot], threads=1).report
+    assert free["pairs"][0]["accepted"]
+    site_pose = (3.0, -1.5, 0.4)
+    base.fixed = True
+    base.pose = site_pose
+    truth = compose(site_pose, [free["maps"][1]["pose"][k] for k in ("x", "y", "yaw")])
+    # A prior 0.3 m and 5 deg off with the default sigmas (0.5 m, 10 deg): the pair decides.
+    robot.initial_pose = (truth[0] + 0.3, truth[1], truth[2] + math.radians(5))
+    assert robot.initial_pose_sigma == pytest.approx((0.5, math.radians(10)))
+    near = fleetmerge.merge([base, robot], threads=1).report
+    assert near["pairs"][0]["accepted"]
+    assert [m["placed_by"] for m in near["maps"]] == ["fixed", "pairs"]
+    got = near["maps"][1]["pose"]
+    assert (got["x"], got["y"]) == pytest.approx(truth[:2], abs=0.05)
+    assert near["maps"][1]["initial_pose"]["x"] == pytest.approx(truth[0] + 0.3)
+    # A prior 5 m off with sigma 0.2 m: the pair is refused, naming the priors; the robot is
+    # placed at its prior.
+    wrong = (truth[0] + 3.0, truth[1] - 4.0, truth[2])
+    robot = fleetmerge.Map(robot.data, robot.resolution, robot.origin, name=robot.name,
+                           initial_pose=wrong, initial_pose_sigma=(0.2, math.radians(10)))
+    refused = fleetmerge.merge([base, robot], threads=1).report
+    pair = refused["pairs"][0]
+    assert not pair["accepted"]
+    assert pair["note"].startswith("refused: every hypothesis contradicts the fixed pose of map 1 "
+                                   "and initial_pose of map 2")
+    assert refused["maps"][1]["placed_by"] == "prior"
+    got = refused["maps"][1]["pose"]
+    assert (got["x"], got["y"], got["yaw"]) == pytest.approx(wrong, abs=1e-9)
+    assert refused["maps"][1]["initial_pose_sigma"] == pytest.approx([0.2, math.radians(10)])
+    with pytest.raises(ValueError, match="initial_pose_sigma is the uncertainty of an initial_pose"):
+        fleetmerge.Map(robot.data, robot.resolution, initial_pose_sigma=(0.5, 0.1))
+    with pytest.raises(ValueError, match=r"initial_pose\[1\] must be finite"):
+        robot.initial_pose = (0.0, float("nan"), 0.0)
+    with pytest.raises(ValueError, match=r"initial_pose_sigma\[0\] must be finite and > 0"):
+        robot.initial_pose_sigma = (-1.0, 0.1)
+    robot.initial_pose = None
+    assert robot.initial_pose is None
+
+
+@needs_maps
 def test_merge_options_reach_the_job():
     paths = [real("robotis_corridor_run1"), real("robotis_corridor_run2")]
     # An omega threshold no pair reaches leaves both maps unmerged, as on the command line.

@@ -81,6 +81,23 @@ TEST(PoseGraph, AnchorsKeepTheirPoses) {
   EXPECT_NEAR(e.translation_m, 1.0, 1e-9);  // left to the cycle check to reject
 }
 
+TEST(PoseGraph, AnEdgesOwnSigmasWeighIt) {
+  // Node 1 measured from the held node 0 twice, 1 m apart along x: once at the options' 0.10 m
+  // (a pair), once at its own 1.0 m (a prior). Without a robust loss the solution is the
+  // weighted mean, 1/0.1^2 : 1/1^2 = 100 : 1, so 1/101 m from the pair's measurement; the yaw
+  // likewise with 0.5 deg against 5 deg.
+  PoseGraphOptions options;
+  options.loss = RobustLoss::kNone;
+  const double yaw_sigma = 10.0 * options.yaw_sigma_rad;
+  const std::vector<PoseGraphEdge> edges = {{0, 1, Pose2(5.0, 0.0, 0.0), 1.0, 0.0, 0.0},
+                                            {0, 1, Pose2(6.0, 0.0, 0.01), 1.0, 1.0, yaw_sigma}};
+  std::vector<std::optional<Pose2>> initial = {Pose2(), Pose2(5.0, 0.0, 0.0)};
+  const auto poses = OptimizePoseGraph(initial, edges, 0, options);
+  ASSERT_TRUE(poses[1].has_value());
+  EXPECT_NEAR(poses[1]->x_m(), 5.0 + 1.0 / 101.0, 1e-6);
+  EXPECT_NEAR(poses[1]->yaw_rad(), 0.01 / 101.0, 1e-8);
+}
+
 TEST(PoseGraph, SpanningTreeLeavesUnconnectedNodesWithoutPose) {
   const std::vector<PoseGraphEdge> edges = {{0, 1, Pose2(1, 0, 0), 0.9}};
   const auto poses = SpanningTreePoses(3, edges, 0);

@@ -67,6 +67,21 @@ class Map {
   bool fixed() const { return fixed_; }
   const Pose2D& pose() const { return pose_; }
   void set_fixed(bool fixed, Pose2D pose = {});
+  // A known start pose (job files' `initial_pose`, `initial_pose_sigma`): the map frame's pose in
+  // the site frame in which every map's prior is given (with fixed maps, theirs), with its sigmas
+  // (metres, radians; default 0.5 m and 10 deg). Merge refuses a pair whose hypotheses all
+  // contradict two maps' known poses beyond 3 sigma, and places a map that overlaps no other at
+  // its prior (MapPlacement::placed_by "prior"). set_initial_pose throws std::invalid_argument,
+  // naming the map, for a non-finite pose or a sigma that is not finite and > 0; a fixed map
+  // with an initial pose is refused by Merge. clear_initial_pose removes it.
+  const std::optional<Pose2D>& initial_pose() const { return initial_pose_; }
+  double initial_pose_sigma_m() const { return initial_pose_sigma_m_; }
+  double initial_pose_sigma_rad() const { return initial_pose_sigma_rad_; }
+  void set_initial_pose(Pose2D pose, double sigma_m = kDefaultInitialPoseSigmaM,
+                        double sigma_rad = kDefaultInitialPoseSigmaRad);
+  void clear_initial_pose() { initial_pose_.reset(); }
+  static constexpr double kDefaultInitialPoseSigmaM = 0.5;
+  static constexpr double kDefaultInitialPoseSigmaRad = 0.17453292519943295;  // 10 deg
   // The cell (i, j) (column i, row j from the origin), -1 outside the map.
   std::int8_t at(int i, int j) const;
 
@@ -79,6 +94,9 @@ class Map {
   std::string name_;
   bool fixed_ = false;
   Pose2D pose_;
+  std::optional<Pose2D> initial_pose_;
+  double initial_pose_sigma_m_ = kDefaultInitialPoseSigmaM;
+  double initial_pose_sigma_rad_ = kDefaultInitialPoseSigmaRad;
 };
 
 // Reads a map_server YAML (with its PGM/PNG image), an OctoMap octree (.bt, .ot: its 2-D floor
@@ -155,7 +173,11 @@ PairHypotheses Pair(const Map& a, const Map& b, const Options& options = {});
 struct MapPlacement {
   std::string name;
   int component = 0;
-  Pose2D pose;  // the map's frame in its component's merged frame (the reference map's frame)
+  Pose2D pose;  // the map's frame in its component's merged frame (the reference map's frame;
+                // with fixed maps or priors the site frame)
+  // What placed it: "fixed", "reference", "pairs", "prior" (only its initial pose links it to
+  // the rest of its component) or "unmerged" (alone in its component).
+  std::string placed_by;
 };
 
 // The decision on one pair of maps (a before b in input order).
