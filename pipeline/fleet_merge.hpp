@@ -37,8 +37,11 @@ struct FleetResult {
 };
 
 // `reference` indexes `maps`. Throws fleetmerge::Error for an empty list or a bad reference.
+// `cache` (pipeline/pair_cache.hpp), when given, supplies the pairs it holds and keeps the others:
+// the same result as without it. options.cache_dir is not looked at here (RunLoadedJob opens it).
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
-                       const FleetOptions& options, const ProgressFn& progress = {});
+                       const FleetOptions& options, const ProgressFn& progress = {},
+                       PairCache* cache = nullptr);
 
 // With fixed (base) maps: `fixed` holds, per map, its given pose T_merged_map or nullopt for a
 // map that moves (empty: none is fixed). Fixed maps never move; the merged frame is theirs;
@@ -48,6 +51,6 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
 // fixed map.
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
                        const FixedPoses& fixed, const FleetOptions& options,
-                       const ProgressFn& progress = {});
+                       const ProgressFn& progress = {}, PairCache* cache = nullptr);
 
 }  // namespace fleetmerge

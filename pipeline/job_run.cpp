@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "fleetmerge/version.hpp"  // the cache's entries are valid for this version only
 #include "io/atomic_file.hpp"
 #include "io/map_inputs.hpp"
 #include "io/octree_io.hpp"
@@ -175,7 +176,23 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     fixed[m] = job.maps[m].T_merged_map;
   }
   JobOutcome outcome;
-  outcome.result = MergeFleet(grids, reference, fixed, job.options, options.progress);
+  {
+    std::optional<PairCache> cache;
+    if (!job.options.cache_dir.empty()) {
+      CacheFolderOptions cache_options;
+      cache_options.max_bytes = job.options.cache_max_mb << 20;
+      cache_options.lock_wait_s = options.lock_wait_s;
+      cache_options.lock_notice = options.cache_lock_notice;
+      cache_options.job = JobIdentity(job);
+      cache.emplace(job.options.cache_dir, FLEETMERGE_VERSION_STRING, cache_options);
+    }
+    outcome.result = MergeFleet(grids, reference, fixed, job.options, options.progress,
+                                cache ? &*cache : nullptr);
+    if (cache) {  // trimmed and unlocked before the outputs are written
+      cache->Evict();
+      outcome.cache = cache->stats();
+    }
+  }
   const FleetResult& result = outcome.result;
 
   const auto write_start = Clock::now();
@@ -197,6 +214,19 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
   timing.total_ms = load_ms + MillisecondsSince(start);
   outcome.report = MakeReport(job, result, files, timing);
   AddOctreesToReport(outcome.report, job_octrees, octree_outputs);
+  if (outcome.cache) {
+    const PairCacheStats& stats = *outcome.cache;
+    outcome.report["cache"] = {{"dir", job.options.cache_dir.generic_string()},
+                               {"max_mb", job.options.cache_max_mb},
+                               {"pairs_cached", stats.pairs_cached},
+                               {"pairs_computed", stats.pairs_computed},
+                               {"entries_rejected", stats.rejected},
+                               {"entries_evicted", stats.evicted},
+                               {"write_failures", stats.write_failures}};
+    if (!stats.first_write_error.empty()) {
+      outcome.report["cache"]["first_write_error"] = stats.first_write_error;
+    }
+  }
   for (std::size_t c = 0; c < result.components.size(); ++c) {
     outcome.report["components"][c]["frame"] = ParentFrame(job, static_cast<int>(c));
   }
