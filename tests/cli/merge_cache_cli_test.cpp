@@ -90,6 +90,33 @@ TEST_F(MergeCacheCliTest, AJobFilesCacheIsRelativeToItAndTheFlagOverridesIt) {
   EXPECT_TRUE(fs::is_directory(other));
 }
 
+TEST_F(MergeCacheCliTest, TwoJobsSharingACacheAtOnceTakeTurns) {
+  // Two merges into different folders started together: the second waits for the cache's lock,
+  // then finds the first's pair. Either way exactly one of them computes it.
+  const fs::path cache = dir_ / "cache";
+  std::string both;
+  for (const char* out : {"one", "two"}) {
+    both += std::string(FLEETMERGE_EXECUTABLE) + " merge --quiet --cache " + ShellQuote(cache) +
+            " --out " + ShellQuote(dir_ / out) + " " + ShellQuote(dir_ / "ex" / "robot_a.yaml") +
+            " " + ShellQuote(dir_ / "ex" / "robot_b.yaml") + " >" +
+            ShellQuote(dir_ / (std::string(out) + ".log")) + " 2>&1 & ";
+  }
+  ASSERT_EQ(testing::RunCommand(both + "wait").exit_code, 0);
+  int computed = 0, cached = 0;
+  for (const char* out : {"one", "two"}) {
+    const std::string log = ReadFile(dir_ / (std::string(out) + ".log"));
+    ASSERT_TRUE(fs::exists(dir_ / out / "report.json")) << log;
+    const json report = json::parse(ReadFile(dir_ / out / "report.json"));
+    computed += report["cache"]["pairs_computed"].get<int>();
+    cached += report["cache"]["pairs_cached"].get<int>();
+    EXPECT_EQ(report["cache"]["entries_rejected"], 0) << log;
+  }
+  EXPECT_EQ(computed, 1);
+  EXPECT_EQ(cached, 1);
+  EXPECT_EQ(Comparable(json::parse(ReadFile(dir_ / "one" / "report.json"))),
+            Comparable(json::parse(ReadFile(dir_ / "two" / "report.json"))));
+}
+
 TEST_F(MergeCacheCliTest, ACacheFolderThatIsAFileFailsTheJobNamingIt) {
   const fs::path file = dir_ / "not_a_folder";
   WriteFile(file, "precious");
