@@ -143,7 +143,14 @@ fs::path CacheFolder::EntryPath(const Sha256Digest& key) const {
   return dir_ / (ToHex(key) + kEntryExtension);
 }
 
+void CacheFolder::Unlock() { lock_.reset(); }
+
+void CacheFolder::CheckLocked() const {
+  if (!lock_) throw Error("internal: cache folder " + dir_.string() + " used after Unlock");
+}
+
 std::optional<std::string> CacheFolder::Read(const Sha256Digest& key) {
+  CheckLocked();
   const fs::path path = EntryPath(key);
   std::ifstream in(path, std::ios::binary);
   if (!in) return std::nullopt;  // absent (or unreadable: rewritten below by the caller)
@@ -161,17 +168,20 @@ std::optional<std::string> CacheFolder::Read(const Sha256Digest& key) {
 }
 
 void CacheFolder::Discard(const Sha256Digest& key) {
+  CheckLocked();
   ++rejected_;
   std::error_code ec;
   fs::remove(EntryPath(key), ec);
 }
 
 void CacheFolder::Write(const Sha256Digest& key, const std::string& payload) {
+  CheckLocked();
   WriteFileAtomically(EntryPath(key), CacheEntryBytes(key, version_, payload), {},
                       AtomicWrite::kNoSync);
 }
 
 int CacheFolder::Evict() {
+  CheckLocked();
   struct Entry {
     fs::file_time_type used;
     fs::path path;

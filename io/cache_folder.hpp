@@ -16,9 +16,9 @@
 // removed and reported as absent, so its caller computes it again and writes it anew.
 //
 // One job at a time: the folder is locked (io/folder_lock.hpp, label "cache folder") from the
-// constructor to the destructor. A second job sharing the cache waits for the first and then
-// finds the first job's entries. Entries read are marked as used (their modification time), and
-// Evict removes the least recently used until the folder fits its size bound.
+// constructor to Unlock (or the destructor). A second job sharing the cache waits for the first and
+// then finds the first job's entries. Entries read are marked as used (their modification time),
+// and Evict removes the least recently used until the folder fits its size bound.
 #pragma once
 
 #include <atomic>
@@ -65,11 +65,16 @@ class CacheFolder {
   // entries take at most options.max_bytes. Returns how many entries it removed.
   int Evict();
 
+  // Releases the folder's lock: another job may use it now. Read, Write and Evict must not be
+  // called afterwards (they throw fleetmerge::Error).
+  void Unlock();
+
   std::filesystem::path EntryPath(const Sha256Digest& key) const;
   const std::filesystem::path& dir() const { return dir_; }
   int rejected() const { return rejected_; }
 
  private:
+  void CheckLocked() const;
   std::filesystem::path dir_;
   std::string version_;
   std::int64_t max_bytes_;

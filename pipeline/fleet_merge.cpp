@@ -12,6 +12,7 @@
 #include "pipeline/composite.hpp"
 #include "pipeline/corroboration.hpp"
 #include "pipeline/fleet_graph.hpp"
+#include "pipeline/pair_cache.hpp"
 #include "pipeline/weak_bridges.hpp"
 
 namespace fleetmerge {
@@ -188,6 +189,7 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   PairOptions pair_options = options.pair;
   pair_options.hypotheses.min_overlap_cells = options.min_overlap_cells;
   result.pairs = ComputeAllPairs(result.maps, pair_options, options.threads, progress, cache);
+  if (cache) cache->Close();  // trimmed and released: another job may use it while this one goes on
   result.timing.pairs_ms = MillisecondsSince(start);
 
   start = std::chrono::steady_clock::now();

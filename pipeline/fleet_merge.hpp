@@ -37,8 +37,9 @@ struct FleetResult {
 };
 
 // `reference` indexes `maps`. Throws fleetmerge::Error for an empty list or a bad reference.
-// `cache` (pipeline/pair_cache.hpp), when given, supplies the pairs it holds and keeps the others:
-// the same result as without it. options.cache_dir is not looked at here (RunLoadedJob opens it).
+// `cache` (pipeline/pair_cache.hpp), when given, supplies the pairs it holds and keeps the others
+// (the same result as without it), and is closed (trimmed, unlocked) once the pairs are done.
+// options.cache_dir is not looked at here (RunLoadedJob opens it).
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
                        const FleetOptions& options, const ProgressFn& progress = {},
                        PairCache* cache = nullptr);

@@ -188,8 +188,8 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     }
     outcome.result = MergeFleet(grids, reference, fixed, job.options, options.progress,
                                 cache ? &*cache : nullptr);
-    if (cache) {  // trimmed and unlocked before the outputs are written
-      cache->Evict();
+    if (cache) {
+      cache->Close();  // done by MergeFleet after the pairs already; again does nothing
       outcome.cache = cache->stats();
     }
   }

@@ -67,9 +67,9 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
 
 // With job.options.cache_dir set, the pair cache (pipeline/pair_cache.hpp) is opened after the
 // output folder and locked with the same wait, until the pairs are stored and the cache is
-// trimmed to its size bound; report.json gets a "cache" object with its counts. Throws
-// fleetmerge::Error naming the cache folder when it is a file, cannot be created or is not
-// writable.
+// trimmed to its size bound (then other jobs may use it while this one finishes); report.json gets
+// a "cache" object with its counts. Throws fleetmerge::Error naming the cache folder when it is a
+// file, cannot be created or is not writable.
 //
 // LoadJobMaps, then RunLoadedJob.
 JobOutcome RunJob(const Job& job, const JobRunOptions& options = {});

@@ -186,7 +186,12 @@ void PairCache::StorePair(const Sha256Digest& options, const Sha256Digest& a, co
   }
 }
 
-void PairCache::Evict() { evicted_ += folder_.Evict(); }
+void PairCache::Close() {
+  if (closed_) return;
+  closed_ = true;
+  evicted_ += folder_.Evict();
+  folder_.Unlock();
+}
 
 void PairCache::CountPairs(int cached, int computed) {
   pairs_cached_ += cached;

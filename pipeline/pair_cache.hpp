@@ -62,8 +62,11 @@ class PairCache {
   // computed: it is counted, and the first message kept, in stats().
   void StorePair(const Sha256Digest& options, const Sha256Digest& a, const Sha256Digest& b,
                  const PairOutcome& outcome);
-  // Evicts the least recently used entries beyond the size bound (CacheFolder::Evict).
-  void Evict();
+  // Evicts the least recently used entries beyond the size bound (CacheFolder::Evict) and
+  // releases the folder for other jobs. MergeFleet closes its cache once the pairs are done, so
+  // a job holds the cache only during its pair search. Nothing but stats() afterwards; a second
+  // Close does nothing.
+  void Close();
 
   const std::string& version() const { return version_; }
   const std::filesystem::path& dir() const { return folder_.dir(); }
@@ -76,6 +79,7 @@ class PairCache {
                               const Sha256Digest& b);
   std::string version_;
   CacheFolder folder_;
+  bool closed_ = false;
   std::atomic<int> pairs_cached_{0}, pairs_computed_{0}, evicted_{0}, write_failures_{0};
   mutable std::mutex error_mutex_;
   std::string first_write_error_;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "io/map_io.hpp"
 #include "pipeline/fleet_merge.hpp"
 #include "sim/ground_truth_pair.hpp"
@@ -235,6 +236,22 @@ TEST_F(PairCacheTest, PairOptionsThatChangeHypothesesMissTheCache) {
   PairCacheStats decisions;
   Cached(3, decisions);
   EXPECT_EQ(decisions.pairs_cached, 3);
+}
+
+TEST_F(PairCacheTest, TheCacheIsReleasedOnceThePairsAreDone) {
+  PairCache cache(dir_, kVersion, {});
+  const FleetResult result = MergeFleet(FirstMaps(fleet_, 3), 0, options_, {}, &cache);
+  // Still alive, but closed: another job gets the folder at once (no wait), with its pairs.
+  PairCache other(dir_, kVersion, {});
+  EXPECT_TRUE(other.FindPair(PairOptionsDigest(
+                                 [&] {
+                                   PairOptions o = options_.pair;
+                                   o.hypotheses.min_overlap_cells = options_.min_overlap_cells;
+                                   return o;
+                                 }(),
+                                 kVersion),
+                             MapDigest(result.maps[0]), MapDigest(result.maps[1])));
+  EXPECT_THROW(cache.FindPair({}, {}, {}), Error);
 }
 
 TEST(MapDigest, ChangesWithCellsResolutionAndOrigin) {
