@@ -1,5 +1,6 @@
 #include "pipeline/job_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <utility>
@@ -86,6 +87,23 @@ void WriteMergedBag(const std::filesystem::path& dir, const Job& job, const Flee
   written.insert(written.end(), {prefix + kMergedBagMcapName, prefix + kMergedBagMetadataName});
 }
 
+// Each run replaces its output folder as a whole (io/result_folder.hpp): a cache inside it would
+// be taken for a stranger's files (the next run refuses the folder) or replaced with the results.
+void CheckCacheOutsideOutput(const Job& job) {
+  std::error_code ec;
+  const std::filesystem::path cache = std::filesystem::weakly_canonical(job.options.cache_dir, ec);
+  std::filesystem::path output = std::filesystem::weakly_canonical(job.output_dir, ec);
+  if (ec) return;  // reported by whichever fails to open
+  // "out/" names the folder "out": no empty last component in the comparison.
+  if (!output.empty() && output.filename().empty()) output = output.parent_path();
+  const auto [o, c] = std::mismatch(output.begin(), output.end(), cache.begin(), cache.end());
+  if (o == output.end()) {
+    throw Error("cache folder " + job.options.cache_dir.string() + " is inside the output folder " +
+                job.output_dir.string() +
+                ", which every run replaces as a whole; put the cache beside it");
+  }
+}
+
 }  // namespace
 
 std::vector<LoadedMap> LoadJobMaps(const Job& job, int threads, std::vector<JobOctree>& octrees) {
@@ -160,6 +178,7 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     CheckResampledSizes(maps, job.options.resolution_m, job.options.max_map_cells);
   }
   CheckTransformFrames(job);
+  if (options.write && !job.options.cache_dir.empty()) CheckCacheOutsideOutput(job);
   // Checked before the work (a folder that may not be replaced fails the job now); every file
   // then goes to a staging folder, swapped in as a whole (io/result_folder.hpp).
   std::optional<ResultFolder> folder;

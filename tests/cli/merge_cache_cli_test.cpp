@@ -128,6 +128,18 @@ TEST_F(MergeCacheCliTest, ACacheFolderThatIsAFileFailsTheJobNamingIt) {
   EXPECT_FALSE(fs::exists(dir_ / "out" / "report.json"));
 }
 
+TEST_F(MergeCacheCliTest, ACacheInsideTheOutputFolderIsRefused) {
+  for (const fs::path& cache : {dir_ / "out" / "cache", dir_ / "out"}) {
+    // "out/" is the folder "out" too.
+    const auto run = Merge(dir_ / "out/", "--cache " + ShellQuote(cache));
+    EXPECT_EQ(run.exit_code, 1) << run.both();
+    EXPECT_TRUE(Contains(run.err, "cache folder " + cache.string() +
+                                      " is inside the output folder " + (dir_ / "out/").string()))
+        << run.err;
+    EXPECT_FALSE(fs::exists(cache / "CACHEDIR.TAG"));
+  }
+}
+
 TEST_F(MergeCacheCliTest, AGarbageEntryIsRebuilt) {
   const fs::path cache = dir_ / "cache";
   ASSERT_EQ(Merge(dir_ / "out", "--cache " + ShellQuote(cache)).exit_code, 0);
