@@ -73,7 +73,10 @@ std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
   }
   const int total = static_cast<int>(jobs.size());
   const int cached_count = total - static_cast<int>(missing.size());
-  if (cache) cache->CountPairs(cached_count, static_cast<int>(missing.size()));
+  if (cache) {
+    cache->CountPairs(cached_count, static_cast<int>(missing.size()),
+                      static_cast<int>(std::count(needed.begin(), needed.end(), 1)));
+  }
   if (progress && cached_count > 0) progress("pairs", cached_count, total);
   // Each map's own work once, shared by its maps.size() - 1 pairs (pipeline/prepared_map.hpp);
   // only for the maps of pairs still to compute.

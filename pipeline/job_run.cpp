@@ -239,6 +239,7 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
                                {"max_mb", job.options.cache_max_mb},
                                {"pairs_cached", stats.pairs_cached},
                                {"pairs_computed", stats.pairs_computed},
+                               {"maps_prepared", stats.maps_prepared},
                                {"entries_rejected", stats.rejected},
                                {"entries_evicted", stats.evicted},
                                {"write_failures", stats.write_failures}};

@@ -193,15 +193,17 @@ void PairCache::Close() {
   folder_.Unlock();
 }
 
-void PairCache::CountPairs(int cached, int computed) {
+void PairCache::CountPairs(int cached, int computed, int maps_prepared) {
   pairs_cached_ += cached;
   pairs_computed_ += computed;
+  maps_prepared_ += maps_prepared;
 }
 
 PairCacheStats PairCache::stats() const {
   PairCacheStats stats;
   stats.pairs_cached = pairs_cached_;
   stats.pairs_computed = pairs_computed_;
+  stats.maps_prepared = maps_prepared_;
   stats.rejected = folder_.rejected();
   stats.evicted = evicted_;
   stats.write_failures = write_failures_;

@@ -41,6 +41,7 @@ std::optional<PairOutcome> ParsePairOutcome(const std::string& payload);
 struct PairCacheStats {
   int pairs_cached = 0;    // taken from the cache
   int pairs_computed = 0;  // computed (and stored)
+  int maps_prepared = 0;   // maps prepared for the pairs computed (pipeline/prepared_map.hpp)
   int rejected = 0;        // entries found corrupt, truncated, foreign or of another version
   int evicted = 0;         // entries removed for the size bound
   int write_failures = 0;  // entries that could not be stored (the job goes on without them)
@@ -72,7 +73,7 @@ class PairCache {
   const std::filesystem::path& dir() const { return folder_.dir(); }
   PairCacheStats stats() const;
   // Counted by ComputeAllPairs.
-  void CountPairs(int cached, int computed);
+  void CountPairs(int cached, int computed, int maps_prepared);
 
  private:
   static Sha256Digest PairKey(const Sha256Digest& options, const Sha256Digest& a,
@@ -80,7 +81,8 @@ class PairCache {
   std::string version_;
   CacheFolder folder_;
   bool closed_ = false;
-  std::atomic<int> pairs_cached_{0}, pairs_computed_{0}, evicted_{0}, write_failures_{0};
+  std::atomic<int> pairs_cached_{0}, pairs_computed_{0}, maps_prepared_{0}, evicted_{0},
+      write_failures_{0};
   mutable std::mutex error_mutex_;
   std::string first_write_error_;
 };

@@ -63,6 +63,7 @@ TEST_F(MergeCacheCliTest, ARerunTakesThePairFromTheCache) {
   EXPECT_EQ(warm_report["cache"]["dir"], cache.generic_string());
   EXPECT_EQ(warm_report["cache"]["pairs_cached"], 1);
   EXPECT_EQ(warm_report["cache"]["pairs_computed"], 0);
+  EXPECT_EQ(warm_report["cache"]["maps_prepared"], 0);
   EXPECT_EQ(warm_report["cache"]["max_mb"], 1024);
   // The same poses, pairs and hypotheses (report.json writes doubles exactly), the same cells.
   EXPECT_EQ(Comparable(warm_report), Comparable(plain_report));

@@ -134,10 +134,12 @@ TEST_F(PairCacheTest, ARerunTakesEveryPairFromTheCacheWithTheSameResult) {
   const FleetResult first = Cached(4, cold);
   EXPECT_EQ(cold.pairs_cached, 0);
   EXPECT_EQ(cold.pairs_computed, 6);
+  EXPECT_EQ(cold.maps_prepared, 4);
   EXPECT_EQ(Entries(dir_).size(), 6u);
   const FleetResult second = Cached(4, warm);
   EXPECT_EQ(warm.pairs_cached, 6);
   EXPECT_EQ(warm.pairs_computed, 0);
+  EXPECT_EQ(warm.maps_prepared, 0);  // no pair to compute: no map prepared
   EXPECT_EQ(warm.rejected, 0);
   // The merge must have merged something for the comparison to mean anything.
   int merged = 0;
@@ -153,6 +155,7 @@ TEST_F(PairCacheTest, OneMapMoreComputesOnlyItsPairs) {
   const FleetResult cached = Cached(5, five);
   EXPECT_EQ(five.pairs_cached, 6);
   EXPECT_EQ(five.pairs_computed, 4);
+  EXPECT_EQ(five.maps_prepared, 5);  // each new pair has an old map in it
   EXPECT_EQ(Entries(dir_).size(), 10u);
   ExpectSameMerge(Uncached(5), cached);
 }
