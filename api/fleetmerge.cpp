@@ -90,6 +90,8 @@ FleetOptions ToFleetOptions(const Options& o) {
           "min_bridge_wall_agreement must be in 0..1");
   Require(o.threads >= 0, "threads must be >= 0 (0: all cores)");
   Require(o.max_map_cells > 0, "max_map_cells must be > 0");
+  Require(o.cache_max_mb >= 1 && o.cache_max_mb <= kLargestCacheMaxMb,
+          "cache_max_mb must be in 1.." + std::to_string(kLargestCacheMaxMb));
   Require(std::isfinite(o.octree_band_min) && std::isfinite(o.octree_band_max) &&
               o.octree_band_min < o.octree_band_max,
           "octree_band_min must be below octree_band_max");
@@ -101,6 +103,8 @@ FleetOptions ToFleetOptions(const Options& o) {
   f.min_bridge_wall_agreement = o.min_bridge_wall_agreement;
   f.threads = o.threads;
   f.max_map_cells = o.max_map_cells;
+  f.cache_dir = o.cache_dir;
+  f.cache_max_mb = o.cache_max_mb;
   f.octree.band_min_m = o.octree_band_min;
   f.octree.band_max_m = o.octree_band_max;
   if (o.fusion == "log-odds") {

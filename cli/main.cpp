@@ -90,6 +90,15 @@ int main(int argc, char** argv) {
                    "once)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  merge_app->add_option("--cache", merge.cache_dir,
+                        "keep pairs' hypotheses in this folder and reuse them in re-runs (every "
+                        "job; a job file's 'cache' otherwise)");
+  merge_app
+      ->add_option("--cache-max-mb", merge.cache_max_mb,
+                   "size bound of the cache folder in MiB (default " +
+                       std::to_string(kDefaultCacheMaxMb) +
+                       "; least recently used entries are evicted beyond)")
+      ->check(CLI::Range(std::int64_t(1), kLargestCacheMaxMb));
   merge_app
       ->add_option("--max-map-cells", merge.options.max_map_cells,
                    "refuse map images with more cells (checked before decoding)")

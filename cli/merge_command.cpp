@@ -73,6 +73,13 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
           << std::flush;
     };
   }
+  if (!quiet) {
+    options.cache_lock_notice = [&job, lock_wait_s, &err](const std::string& holder) {
+      err << job.name << ": waiting up to " << lock_wait_s << " s for cache folder "
+          << job.options.cache_dir.string() << ", in use by " << holder << "\n"
+          << std::flush;
+    };
+  }
   options.progress = MakeProgress(job.name, quiet, err);
   const JobOutcome outcome = RunJob(job, options);
   const FleetResult& result = outcome.result;
@@ -92,6 +99,18 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
     if (result.placed_by[m] != PlacedBy::kPrior) continue;
     out << job.name << ": " << job.maps[m].name
         << " placed by its initial_pose (no accepted pair links it to the rest)\n";
+  }
+  if (outcome.cache) {
+    const PairCacheStats& cache = *outcome.cache;
+    out << job.name << ": pairs: " << cache.pairs_cached << " from the cache, "
+        << cache.pairs_computed << " computed";
+    if (cache.rejected > 0) out << "; " << cache.rejected << " bad cache entries rebuilt";
+    if (cache.evicted > 0) out << "; " << cache.evicted << " old cache entries evicted";
+    out << "\n";
+    if (cache.write_failures > 0) {
+      err << "fleetmerge: warning: job '" << job.name << "': " << cache.write_failures
+          << " pair(s) could not be stored in the cache: " << cache.first_write_error << "\n";
+    }
   }
 }
 
@@ -129,6 +148,10 @@ int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream
     for (const auto& file : command.inputs) {
       for (Job& job : LoadJobFile(file)) jobs.push_back(std::move(job));
     }
+  }
+  for (Job& job : jobs) {  // the command line's cache is every job's
+    if (command.cache_dir) job.options.cache_dir = *command.cache_dir;
+    if (command.cache_max_mb) job.options.cache_max_mb = *command.cache_max_mb;
   }
   return RunJobs(jobs, command.quiet, out, err, command.force, command.lock_wait_s);
 }

@@ -3,6 +3,7 @@
 // going when one job fails.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
@@ -25,6 +26,9 @@ struct MergeCommand {
   bool force = false;  // replace an output folder holding another job's results
   double lock_wait_s = kDefaultOutputLockWaitS;  // for another job writing the same folder
   FleetOptions options;                          // with --out
+  // Set for every job (job files' `cache` / `cache_max_mb` otherwise).
+  std::optional<std::filesystem::path> cache_dir;
+  std::optional<std::int64_t> cache_max_mb;
 };
 
 // The job described by `--out DIR a.yaml b.yaml ...`.

@@ -97,10 +97,11 @@ void SyncFolder(const fs::path& path) {
 }
 
 void WriteAndRename(int raw_fd, const fs::path& temp_path, const fs::path& path,
-                    const std::string& bytes) {
+                    const std::string& bytes, AtomicWrite mode) {
   FileDescriptor fd(raw_fd);
   WriteAll(fd.get(), bytes, path);
-  if (::fsync(fd.get()) != 0) ThrowWriteError(path, "cannot flush temporary file", errno);
+  if (mode == AtomicWrite::kDurable && ::fsync(fd.get()) != 0)
+    ThrowWriteError(path, "cannot flush temporary file", errno);
   if (fd.Close() != 0) ThrowWriteError(path, "cannot close temporary file", errno);
   std::error_code ec;
   fs::rename(temp_path, path, ec);
@@ -122,19 +123,19 @@ void CheckNotAnInput(const fs::path& path, const std::vector<fs::path>& protecte
 }
 
 void WriteFileAtomically(const fs::path& path, const std::string& bytes,
-                         const std::vector<fs::path>& protected_inputs) {
+                         const std::vector<fs::path>& protected_inputs, AtomicWrite mode) {
   CheckNotAnInput(path, protected_inputs);
   if (!path.has_filename()) throw Error(path.string() + ": not a file name (ends in a '/')");
   fs::path temp_path;
   const int fd = CreateTempFile(path, &temp_path);
   try {
-    WriteAndRename(fd, temp_path, path, bytes);
+    WriteAndRename(fd, temp_path, path, bytes, mode);
   } catch (...) {
     std::error_code ignored;
     fs::remove(temp_path, ignored);
     throw;
   }
-  SyncFolder(path);
+  if (mode == AtomicWrite::kDurable) SyncFolder(path);
 }
 
 }  // namespace fleetmerge

@@ -16,10 +16,17 @@ namespace fleetmerge {
 void CheckNotAnInput(const std::filesystem::path& path,
                      const std::vector<std::filesystem::path>& protected_inputs);
 
+// kNoSync skips the fsyncs (of the file and of its folder): still all-or-nothing for readers
+// while the machine runs, but after a power cut the file may be empty or old. Only for files
+// whose readers check their bytes (cache entries carry a SHA-256, io/cache_folder.hpp) and
+// would rather rebuild one than pay an fsync per file.
+enum class AtomicWrite { kDurable, kNoSync };
+
 // Writes `bytes` to `path` atomically (temporary file `.name.tmp.<random>` beside it, fsync,
 // rename). On any failure the temporary file is removed and fleetmerge::Error names the path and
 // the reason. The folder must exist. If `path` is a symbolic link, the link itself is replaced.
 void WriteFileAtomically(const std::filesystem::path& path, const std::string& bytes,
-                         const std::vector<std::filesystem::path>& protected_inputs = {});
+                         const std::vector<std::filesystem::path>& protected_inputs = {},
+                         AtomicWrite mode = AtomicWrite::kDurable);
 
 }  // namespace fleetmerge

@@ -32,7 +32,7 @@ const std::vector<std::string> kJobKeys = {
     "name", "maps", "output", "reference", "resolution", "threads", "hypotheses_per_pair",
     "omega_threshold", "min_overlap_cells", "min_wall_agreement", "min_bridge_wall_agreement",
     "refine", "seed", "hough", "translation", "pose_graph", "fusion", "octree", "max_map_cells",
-    "tf_parent", "tf_child"};
+    "tf_parent", "tf_child", "cache", "cache_max_mb"};
 // clang-format on
 
 SamplingOptions ReadSampling(const YamlField& field, const YamlErrors& errors) {
@@ -406,6 +406,18 @@ ListedJob ReadJob(const YamlField& field, int number, const fs::path& job_file,
     result.tf_child_frame = ReadString(*f, "a frame id pattern with {name}", errors);
   }
   ReadOptions(job, result.options, errors);
+  if (auto f = job.Find("cache")) {
+    result.options.cache_dir = Resolve(folder, ReadString(*f, "a cache folder", errors));
+    if (fs::exists(result.options.cache_dir, ec) &&
+        !fs::is_directory(result.options.cache_dir, ec)) {
+      errors.Fail(
+          f->key, f->line,
+          "cache folder '" + result.options.cache_dir.string() + "' exists and is not a folder");
+    }
+  }
+  if (auto f = job.Find("cache_max_mb")) {
+    result.options.cache_max_mb = ReadInteger(*f, 1, kLargestCacheMaxMb, errors);
+  }
   return listed;
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 
 #include "core/occupancy_grid.hpp"
 #include "job/fusion_mode.hpp"
@@ -11,6 +12,10 @@
 #include "refine/pose_graph.hpp"
 
 namespace fleetmerge {
+
+// 1 GiB: a pair's entry takes about 300 bytes, so several million pairs (2000 maps' worth).
+inline constexpr std::int64_t kDefaultCacheMaxMb = 1024;
+inline constexpr std::int64_t kLargestCacheMaxMb = std::int64_t(1) << 40;  // bytes fit an int64
 
 struct FleetOptions {
   double resolution_m = 0.0;  // 0: the finest resolution among the job's maps
@@ -32,6 +37,11 @@ struct FleetOptions {
   OctreeOptions octree;  // floor plans of the job's octrees (.bt, .ot maps)
   // A map image announcing more cells is refused before decoding (see kDefaultMaxMapCells).
   std::int64_t max_map_cells = kDefaultMaxMapCells;
+  // Re-runs reuse earlier work (pipeline/pair_cache.hpp): the pairs' hypotheses are kept in this
+  // folder (empty: no cache), which holds at most cache_max_mb MiB (least recently used entries
+  // are evicted beyond).
+  std::filesystem::path cache_dir;
+  std::int64_t cache_max_mb = kDefaultCacheMaxMb;
 };
 
 }  // namespace fleetmerge

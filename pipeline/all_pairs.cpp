@@ -4,11 +4,13 @@
 #include <atomic>
 #include <memory>
 #include <mutex>
+#include <optional>
 
 #include "core/hypothesis_generator.hpp"
 #include "core/map_features.hpp"
 #include "core/parallel.hpp"
 #include "core/wall_agreement.hpp"
+#include "pipeline/pair_cache.hpp"
 #include "pipeline/prepared_map.hpp"
 
 namespace fleetmerge {
@@ -38,25 +40,61 @@ PairOutcome ComputePair(const std::vector<std::unique_ptr<PreparedMap>>& maps, i
 
 std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
                                          const PairOptions& options, int threads,
-                                         const ProgressFn& progress) {
+                                         const ProgressFn& progress, PairCache* cache) {
   std::vector<std::pair<int, int>> jobs;
   for (int a = 0; a < static_cast<int>(maps.size()); ++a) {
     for (int b = a + 1; b < static_cast<int>(maps.size()); ++b) jobs.emplace_back(a, b);
   }
-  // Each map's own work once, shared by its maps.size() - 1 pairs (pipeline/prepared_map.hpp).
+  std::vector<PairOutcome> outcomes(jobs.size());
+  std::vector<char> found(jobs.size(), 0);
+  std::vector<Sha256Digest> digests;
+  Sha256Digest options_digest{};
+  if (cache) {
+    digests.resize(maps.size());
+    ParallelFor(maps.size(), threads, [&](std::size_t m) { digests[m] = MapDigest(maps[m]); });
+    options_digest = PairOptionsDigest(options, cache->version());
+    ParallelFor(jobs.size(), threads, [&](std::size_t k) {
+      const auto [a, b] = jobs[k];
+      if (std::optional<PairOutcome> cached =
+              cache->FindPair(options_digest, digests[a], digests[b])) {
+        outcomes[k] = std::move(*cached);
+        outcomes[k].a = a;
+        outcomes[k].b = b;
+        found[k] = 1;
+      }
+    });
+  }
+  std::vector<std::size_t> missing;
+  std::vector<char> needed(maps.size(), 0);
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    if (found[k]) continue;
+    missing.push_back(k);
+    needed[jobs[k].first] = needed[jobs[k].second] = 1;
+  }
+  const int total = static_cast<int>(jobs.size());
+  const int cached_count = total - static_cast<int>(missing.size());
+  if (cache) {
+    cache->CountPairs(cached_count, static_cast<int>(missing.size()),
+                      static_cast<int>(std::count(needed.begin(), needed.end(), 1)));
+  }
+  if (progress && cached_count > 0) progress("pairs", cached_count, total);
+  // Each map's own work once, shared by its maps.size() - 1 pairs (pipeline/prepared_map.hpp);
+  // only for the maps of pairs still to compute.
   std::vector<std::unique_ptr<PreparedMap>> prepared(maps.size());
   ParallelFor(maps.size(), threads, [&](std::size_t m) {
-    prepared[m] = std::make_unique<PreparedMap>(maps[m], options);
+    if (needed[m]) prepared[m] = std::make_unique<PreparedMap>(maps[m], options);
   });
-  std::vector<PairOutcome> outcomes(jobs.size());
-  std::atomic<int> done{0};
+  std::atomic<int> done{cached_count};
   std::mutex progress_mutex;
-  ParallelFor(jobs.size(), threads, [&](std::size_t k) {
-    outcomes[k] = ComputePair(prepared, jobs[k].first, jobs[k].second, options);
+  ParallelFor(missing.size(), threads, [&](std::size_t i) {
+    const std::size_t k = missing[i];
+    const auto [a, b] = jobs[k];
+    outcomes[k] = ComputePair(prepared, a, b, options);
+    if (cache) cache->StorePair(options_digest, digests[a], digests[b], outcomes[k]);
     const int finished = ++done;
     if (progress) {
       const std::lock_guard<std::mutex> lock(progress_mutex);
-      progress("pairs", finished, static_cast<int>(jobs.size()));
+      progress("pairs", finished, total);
     }
   });
   return outcomes;

@@ -30,9 +30,14 @@ struct PairOutcome {
   double best_omega() const { return hypotheses.empty() ? 0.0 : hypotheses.front().omega; }
 };
 
+class PairCache;  // pipeline/pair_cache.hpp
+
 // All pairs (a < b, in row order) of maps that share one resolution. threads <= 0: all cores.
+// With a cache, pairs found there are taken as they are, the others computed and stored, and
+// only the maps of computed pairs are prepared: the same outcomes as without it.
 std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
                                          const PairOptions& options, int threads,
-                                         const ProgressFn& progress = {});
+                                         const ProgressFn& progress = {},
+                                         PairCache* cache = nullptr);
 
 }  // namespace fleetmerge

@@ -12,6 +12,7 @@
 #include "pipeline/composite.hpp"
 #include "pipeline/corroboration.hpp"
 #include "pipeline/fleet_graph.hpp"
+#include "pipeline/pair_cache.hpp"
 #include "pipeline/pose_priors.hpp"
 #include "pipeline/weak_bridges.hpp"
 
@@ -142,8 +143,8 @@ OccupancyGrid CompositeComponent(const std::vector<const OccupancyGrid*>& maps,
 }  // namespace
 
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
-                       const FleetOptions& options, const ProgressFn& progress) {
-  return MergeFleet(maps, reference, FixedPoses{}, options, progress);
+                       const FleetOptions& options, const ProgressFn& progress, PairCache* cache) {
+  return MergeFleet(maps, reference, FixedPoses{}, options, progress, cache);
 }
 
 namespace {
@@ -177,13 +178,13 @@ void CheckFixed(const FixedPoses& fixed, std::size_t map_count, int reference) {
 
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
                        const FixedPoses& fixed, const FleetOptions& options,
-                       const ProgressFn& progress) {
-  return MergeFleet(maps, reference, fixed, PosePriors{}, options, progress);
+                       const ProgressFn& progress, PairCache* cache) {
+  return MergeFleet(maps, reference, fixed, PosePriors{}, options, progress, cache);
 }
 
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
                        const FixedPoses& fixed, const PosePriors& priors,
-                       const FleetOptions& options, const ProgressFn& progress) {
+                       const FleetOptions& options, const ProgressFn& progress, PairCache* cache) {
   if (maps.empty()) throw Error("a fleet-merging job needs at least one map");
   if (reference < 0 || reference >= static_cast<int>(maps.size())) {
     throw Error("the reference map index is out of range");
@@ -204,7 +205,8 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   // Hypotheses are ranked with the overlap an edge needs (HypothesisOptions::min_overlap_cells).
   PairOptions pair_options = options.pair;
   pair_options.hypotheses.min_overlap_cells = options.min_overlap_cells;
-  result.pairs = ComputeAllPairs(result.maps, pair_options, options.threads, progress);
+  result.pairs = ComputeAllPairs(result.maps, pair_options, options.threads, progress, cache);
+  if (cache) cache->Close();  // trimmed and released: another job may use it while this one goes on
   result.timing.pairs_ms = MillisecondsSince(start);
 
   start = std::chrono::steady_clock::now();

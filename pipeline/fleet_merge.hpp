@@ -38,8 +38,12 @@ struct FleetResult {
 };
 
 // `reference` indexes `maps`. Throws fleetmerge::Error for an empty list or a bad reference.
+// `cache` (pipeline/pair_cache.hpp), when given, supplies the pairs it holds and keeps the others
+// (the same result as without it), and is closed (trimmed, unlocked) once the pairs are done.
+// options.cache_dir is not looked at here (RunLoadedJob opens it).
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
-                       const FleetOptions& options, const ProgressFn& progress = {});
+                       const FleetOptions& options, const ProgressFn& progress = {},
+                       PairCache* cache = nullptr);
 
 // With fixed (base) maps: `fixed` holds, per map, its given pose T_merged_map or nullopt for a
 // map that moves (empty: none is fixed). Fixed maps never move; the merged frame is theirs;
@@ -49,7 +53,7 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
 // fixed map.
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
                        const FixedPoses& fixed, const FleetOptions& options,
-                       const ProgressFn& progress = {});
+                       const ProgressFn& progress = {}, PairCache* cache = nullptr);
 
 // With known start poses too: `priors` holds, per map, its prior (job/pose_prior.hpp) or nullopt
 // (empty: none has one). Hypotheses that contradict two maps' known poses are dropped and a pair
@@ -59,6 +63,7 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
 // a prior list of another length, a non-finite prior, a sigma <= 0 or a prior on a fixed map.
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
                        const FixedPoses& fixed, const PosePriors& priors,
-                       const FleetOptions& options, const ProgressFn& progress = {});
+                       const FleetOptions& options, const ProgressFn& progress = {},
+                       PairCache* cache = nullptr);
 
 }  // namespace fleetmerge

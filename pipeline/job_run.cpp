@@ -1,11 +1,13 @@
 #include "pipeline/job_run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <utility>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
+#include "fleetmerge/version.hpp"  // the cache's entries are valid for this version only
 #include "io/atomic_file.hpp"
 #include "io/map_inputs.hpp"
 #include "io/octree_io.hpp"
@@ -85,6 +87,23 @@ void WriteMergedBag(const std::filesystem::path& dir, const Job& job, const Flee
   written.insert(written.end(), {prefix + kMergedBagMcapName, prefix + kMergedBagMetadataName});
 }
 
+// Each run replaces its output folder as a whole (io/result_folder.hpp): a cache inside it would
+// be taken for a stranger's files (the next run refuses the folder) or replaced with the results.
+void CheckCacheOutsideOutput(const Job& job) {
+  std::error_code ec;
+  const std::filesystem::path cache = std::filesystem::weakly_canonical(job.options.cache_dir, ec);
+  std::filesystem::path output = std::filesystem::weakly_canonical(job.output_dir, ec);
+  if (ec) return;  // reported by whichever fails to open
+  // "out/" names the folder "out": no empty last component in the comparison.
+  if (!output.empty() && output.filename().empty()) output = output.parent_path();
+  const auto [o, c] = std::mismatch(output.begin(), output.end(), cache.begin(), cache.end());
+  if (o == output.end()) {
+    throw Error("cache folder " + job.options.cache_dir.string() + " is inside the output folder " +
+                job.output_dir.string() +
+                ", which every run replaces as a whole; put the cache beside it");
+  }
+}
+
 }  // namespace
 
 std::vector<LoadedMap> LoadJobMaps(const Job& job, int threads, std::vector<JobOctree>& octrees) {
@@ -159,6 +178,7 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     CheckResampledSizes(maps, job.options.resolution_m, job.options.max_map_cells);
   }
   CheckTransformFrames(job);
+  if (options.write && !job.options.cache_dir.empty()) CheckCacheOutsideOutput(job);
   // Checked before the work (a folder that may not be replaced fails the job now); every file
   // then goes to a staging folder, swapped in as a whole (io/result_folder.hpp).
   std::optional<ResultFolder> folder;
@@ -181,7 +201,23 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     priors[m] = job.maps[m].prior;
   }
   JobOutcome outcome;
-  outcome.result = MergeFleet(grids, reference, fixed, priors, job.options, options.progress);
+  {
+    std::optional<PairCache> cache;
+    if (!job.options.cache_dir.empty()) {
+      CacheFolderOptions cache_options;
+      cache_options.max_bytes = job.options.cache_max_mb << 20;
+      cache_options.lock_wait_s = options.lock_wait_s;
+      cache_options.lock_notice = options.cache_lock_notice;
+      cache_options.job = JobIdentity(job);
+      cache.emplace(job.options.cache_dir, FLEETMERGE_VERSION_STRING, cache_options);
+    }
+    outcome.result = MergeFleet(grids, reference, fixed, priors, job.options, options.progress,
+                                cache ? &*cache : nullptr);
+    if (cache) {
+      cache->Close();  // done by MergeFleet after the pairs already; again does nothing
+      outcome.cache = cache->stats();
+    }
+  }
   const FleetResult& result = outcome.result;
 
   const auto write_start = Clock::now();
@@ -203,6 +239,20 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
   timing.total_ms = load_ms + MillisecondsSince(start);
   outcome.report = MakeReport(job, result, files, timing);
   AddOctreesToReport(outcome.report, job_octrees, octree_outputs);
+  if (outcome.cache) {
+    const PairCacheStats& stats = *outcome.cache;
+    outcome.report["cache"] = {{"dir", job.options.cache_dir.generic_string()},
+                               {"max_mb", job.options.cache_max_mb},
+                               {"pairs_cached", stats.pairs_cached},
+                               {"pairs_computed", stats.pairs_computed},
+                               {"maps_prepared", stats.maps_prepared},
+                               {"entries_rejected", stats.rejected},
+                               {"entries_evicted", stats.evicted},
+                               {"write_failures", stats.write_failures}};
+    if (!stats.first_write_error.empty()) {
+      outcome.report["cache"]["first_write_error"] = stats.first_write_error;
+    }
+  }
   for (std::size_t c = 0; c < result.components.size(); ++c) {
     outcome.report["components"][c]["frame"] = ParentFrame(job, static_cast<int>(c));
   }

@@ -15,6 +15,7 @@
 #include "job/job.hpp"
 #include "pipeline/fleet_merge.hpp"
 #include "pipeline/octree_maps.hpp"
+#include "pipeline/pair_cache.hpp"
 
 namespace fleetmerge {
 
@@ -25,12 +26,15 @@ struct JobRunOptions {
   // once); `lock_notice` is told when the job starts waiting (io/result_folder.hpp).
   double lock_wait_s = kDefaultOutputLockWaitS;
   FolderLock::WaitNotice lock_notice;
+  // The same wait for another job using the job's cache folder (FleetOptions::cache_dir).
+  FolderLock::WaitNotice cache_lock_notice;
   ProgressFn progress;
 };
 
 struct JobOutcome {
   FleetResult result;
-  nlohmann::json report;  // report.json's contents (written or not)
+  nlohmann::json report;                // report.json's contents (written or not)
+  std::optional<PairCacheStats> cache;  // with a cache folder (FleetOptions::cache_dir)
 };
 
 // Loads the job's maps on `threads` threads (0: all cores); a failure is reported for the first
@@ -61,6 +65,12 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
                         const std::vector<JobOctree>& octrees, double load_ms,
                         const JobRunOptions& options = {});
 
+// With job.options.cache_dir set, the pair cache (pipeline/pair_cache.hpp) is opened after the
+// output folder and locked with the same wait, until the pairs are stored and the cache is
+// trimmed to its size bound (then other jobs may use it while this one finishes); report.json gets
+// a "cache" object with its counts. Throws fleetmerge::Error naming the cache folder when it is a
+// file, cannot be created or is not writable.
+//
 // LoadJobMaps, then RunLoadedJob.
 JobOutcome RunJob(const Job& job, const JobRunOptions& options = {});
 

@@ -259,7 +259,9 @@ PYBIND11_MODULE(_fleetmerge, m) {
       .def_readwrite("translation", &fleetmerge::Options::translation)
       .def_readwrite("max_map_cells", &fleetmerge::Options::max_map_cells)
       .def_readwrite("octree_band_min", &fleetmerge::Options::octree_band_min)
-      .def_readwrite("octree_band_max", &fleetmerge::Options::octree_band_max);
+      .def_readwrite("octree_band_max", &fleetmerge::Options::octree_band_max)
+      .def_readwrite("cache_dir", &fleetmerge::Options::cache_dir)
+      .def_readwrite("cache_max_mb", &fleetmerge::Options::cache_max_mb);
 
   py::class_<fleetmerge::MergeResult>(m, "MergeResult")
       .def_readonly("report_json", &fleetmerge::MergeResult::report_json)

@@ -41,6 +41,8 @@ def _options(options):
         if key.startswith("_") or not hasattr(o, key):
             names = sorted(k for k in dir(o) if not k.startswith("_"))
             raise ValueError(f"unknown option '{key}'; options are: {', '.join(names)}")
+        if key == "cache_dir" and isinstance(value, _os.PathLike):
+            value = _os.fspath(value)
         try:
             setattr(o, key, value)
         except TypeError as e:
@@ -91,7 +93,8 @@ def merge(maps, out=None, **options):
     paths...` (maps named by file stem, octrees with their merged .bt). With out=DIR the usual
     result set (merged maps, previews, report.json) is written there, replaced as a whole.
     Options are keywords: threads, omega_threshold, min_overlap_cells, min_wall_agreement,
-    min_bridge_wall_agreement, hypotheses, resolution, fusion, reference, refine, translation, max_map_cells, octree_band_min/max."""
+    min_bridge_wall_agreement, hypotheses, resolution, fusion, reference, refine, translation, max_map_cells, octree_band_min/max,
+    cache_dir (keep pairs' hypotheses there and reuse them: `merge --cache`), cache_max_mb."""
     maps = list(maps)
     o = _options(options)
     out_dir = "" if out is None else _path(out, "out")

@@ -57,6 +57,8 @@ void ExpectSameOptions(const FleetOptions& a, const FleetOptions& b) {
   EXPECT_EQ(a.pose_graph.yaw_sigma_rad, b.pose_graph.yaw_sigma_rad);
   EXPECT_EQ(a.pose_graph.max_edge_yaw_error_rad, b.pose_graph.max_edge_yaw_error_rad);
   EXPECT_EQ(a.pose_graph.max_edge_translation_error_m, b.pose_graph.max_edge_translation_error_m);
+  EXPECT_EQ(a.cache_dir, b.cache_dir);
+  EXPECT_EQ(a.cache_max_mb, b.cache_max_mb);
 }
 
 // A folder with valid tiny maps maps/{a,b,c}.yaml and other/a.yaml (same stem as maps/a.yaml);
@@ -348,6 +350,20 @@ TEST_F(JobFileTest, EveryValueIsTypeAndRangeChecked) {
 }
 
 // --- Rejections: structure -------------------------------------------------------------------
+
+TEST_F(JobFileTest, CacheIsAFolderRelativeToTheJobFileWithASizeBound) {
+  const std::vector<Job> jobs = Load(Minimal("cache: caches/site\ncache_max_mb: 64\n"));
+  ASSERT_EQ(jobs.size(), 1u);
+  EXPECT_EQ(jobs[0].options.cache_dir, dir_ / "caches" / "site");
+  EXPECT_EQ(jobs[0].options.cache_max_mb, 64);
+  EXPECT_EQ(Load(Minimal())[0].options.cache_max_mb, kDefaultCacheMaxMb);
+  EXPECT_TRUE(Load(Minimal())[0].options.cache_dir.empty());
+  ft::WriteFile(dir_ / "plain", "a file");
+  ExpectError(Minimal("cache: plain\n"), 4, "cache",
+              "cache folder '" + (dir_ / "plain").string() + "' exists and is not a folder");
+  ExpectError(Minimal("cache_max_mb: 0\n"), 4, "cache_max_mb", "expected");
+  ExpectError(Minimal("cache: [a, b]\n"), 4, "cache", "expected a cache folder");
+}
 
 TEST_F(JobFileTest, UnknownKeysAreNamedWithTheAllowedOnes) {
   ExpectError(Minimal("resolutoin: 0.05\n"), 4, "resolutoin",

@@ -99,6 +99,23 @@ def test_merge_equals_cli_report(tmp_path):
 
 
 @needs_maps
+def test_merge_with_a_cache_reuses_the_pairs_with_the_same_result(tmp_path):
+    paths = [real(f"robotis_corridor_run{k}") for k in (1, 2, 3)]
+    plain = fleetmerge.merge(paths)
+    cold = fleetmerge.merge(paths, cache_dir=tmp_path / "cache")
+    warm = fleetmerge.merge(paths, cache_dir=str(tmp_path / "cache"), cache_max_mb=16)
+    assert (cold.report["cache"]["pairs_cached"], cold.report["cache"]["pairs_computed"]) == (0, 3)
+    assert (warm.report["cache"]["pairs_cached"], warm.report["cache"]["pairs_computed"]) == (3, 0)
+    assert warm.report["cache"]["max_mb"] == 16
+    without_cache = lambda r: {k: v for k, v in without_timing(r).items() if k != "cache"}
+    assert without_cache(warm.report) == without_cache(plain.report)
+    assert np.array_equal(warm.merged[0].data, plain.merged[0].data)
+    (tmp_path / "file").write_text("not a folder")
+    with pytest.raises(RuntimeError, match="cache folder .*file exists and is not a folder"):
+        fleetmerge.merge(paths, cache_dir=tmp_path / "file")
+
+
+@needs_maps
 def test_merge_of_maps_in_memory_places_them_as_from_files():
     names = ["robotis_corridor_run1", "robotis_corridor_run2", "robotis_corridor_run3"]
     from_files = fleetmerge.merge([real(n) for n in names]).report

@@ -130,6 +130,11 @@ struct Options {
   std::int64_t max_map_cells = 100'000'000;  // Merge of files: larger images are refused
   double octree_band_min = 0.3;  // Merge of octrees: floor plan height band above the floor (m)
   double octree_band_max = 1.8;
+  // Merge: keep the pairs' hypotheses in this folder and reuse them when the same maps come
+  // again (empty: no cache); at most cache_max_mb MiB, least recently used entries evicted.
+  // Results are the same with and without it.
+  std::string cache_dir;
+  std::int64_t cache_max_mb = 1024;
 };
 
 // One transformation of b's map frame into a's: the pose of b's frame in a's frame, its

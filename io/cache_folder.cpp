@@ -1,0 +1,222 @@
+#include "io/cache_folder.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <tuple>
+#include <vector>
+
+#include "core/error.hpp"
+#include "io/atomic_file.hpp"
+
+namespace fleetmerge {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr char kMagic[16] = {'f', 'l', 'e', 'e', 't', 'm', 'e', 'r',
+                             'g', 'e', ' ', 'c', 'a', 'c', 'h', 'e'};
+constexpr std::uint32_t kByteOrderMark = 0x01020304;
+constexpr const char* kEntryExtension = ".entry";
+// Tells backup and archiving tools that the folder holds a cache (https://bford.info/cachedir/).
+constexpr const char* kCacheDirTag =
+    "Signature: 8a477f597d28d172789f06886806bc55\n"
+    "# This file marks a fleetmerge cache folder (fleetmerge merge --cache): re-runs reuse its\n"
+    "# entries; it may be deleted at any time.\n";
+
+template <typename T>
+void Append(std::string& bytes, const T& value) {
+  bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+// Reads the entry's fields in order; any read past the end fails the whole entry.
+class Reader {
+ public:
+  explicit Reader(const std::string& bytes) : bytes_(bytes) {}
+  template <typename T>
+  bool Read(T& value) {
+    if (bytes_.size() - offset_ < sizeof value) return false;
+    std::memcpy(&value, bytes_.data() + offset_, sizeof value);
+    offset_ += sizeof value;
+    return true;
+  }
+  bool ReadBytes(std::size_t size, std::string& out) {
+    if (bytes_.size() - offset_ < size) return false;
+    out.assign(bytes_, offset_, size);
+    offset_ += size;
+    return true;
+  }
+  std::size_t offset() const { return offset_; }
+
+ private:
+  const std::string& bytes_;
+  std::size_t offset_ = 0;
+};
+
+// The payload of `bytes` when it is a sound entry for `key` and `version`.
+std::optional<std::string> ParseEntry(const std::string& bytes, const Sha256Digest& key,
+                                      const std::string& version) {
+  constexpr std::size_t kChecksumSize = sizeof(Sha256Digest);
+  if (bytes.size() < sizeof kMagic + kChecksumSize) return std::nullopt;
+  const std::size_t body_size = bytes.size() - kChecksumSize;
+  Sha256 hash;
+  hash.Update(bytes.data(), body_size);
+  const Sha256Digest checksum = hash.Finish();
+  if (std::memcmp(checksum.data(), bytes.data() + body_size, kChecksumSize) != 0) {
+    return std::nullopt;  // truncated, corrupt, or not an entry at all
+  }
+  Reader reader(bytes);
+  char magic[sizeof kMagic];
+  std::uint32_t format = 0, byte_order = 0, version_size = 0;
+  std::string entry_version;
+  Sha256Digest entry_key{};
+  std::uint64_t payload_size = 0;
+  std::string payload;
+  if (!reader.Read(magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0 ||
+      !reader.Read(format) || format != CacheFolder::kFormatVersion || !reader.Read(byte_order) ||
+      byte_order != kByteOrderMark || !reader.Read(version_size) ||
+      !reader.ReadBytes(version_size, entry_version) || entry_version != version ||
+      !reader.Read(entry_key) || entry_key != key || !reader.Read(payload_size) ||
+      payload_size > body_size || !reader.ReadBytes(payload_size, payload) ||
+      reader.offset() != body_size) {
+    return std::nullopt;
+  }
+  return payload;
+}
+
+bool IsEntryName(const std::string& name) {
+  const std::size_t ext = std::strlen(kEntryExtension);
+  if (name.size() != 64 + ext || name.compare(64, ext, kEntryExtension) != 0) return false;
+  return std::all_of(name.begin(), name.begin() + 64,
+                     [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
+}
+
+// `.<entry name>.tmp.<random>`: WriteFileAtomically's temporary file of an entry.
+bool IsEntryTempName(const std::string& name) {
+  if (name.size() < 1 + 64 + 6 + 5 || name[0] != '.') return false;
+  return IsEntryName(name.substr(1, 64 + 6)) && name.compare(1 + 64 + 6, 5, ".tmp.") == 0;
+}
+
+}  // namespace
+
+std::string CacheEntryBytes(const Sha256Digest& key, const std::string& version,
+                            const std::string& payload) {
+  std::string bytes(kMagic, sizeof kMagic);
+  Append(bytes, CacheFolder::kFormatVersion);
+  Append(bytes, kByteOrderMark);
+  Append(bytes, static_cast<std::uint32_t>(version.size()));
+  bytes += version;
+  Append(bytes, key);
+  Append(bytes, static_cast<std::uint64_t>(payload.size()));
+  bytes += payload;
+  Append(bytes, Sha256Of(bytes));
+  return bytes;
+}
+
+CacheFolder::CacheFolder(const fs::path& dir, const std::string& version,
+                         const CacheFolderOptions& options)
+    : dir_(dir), version_(version), max_bytes_(options.max_bytes) {
+  std::error_code ec;
+  if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec)) {
+    throw Error("cache folder " + dir_.string() + " exists and is not a folder");
+  }
+  // The lock file lives beside the folder: its parent must exist first.
+  const fs::path parent = fs::absolute(dir_, ec).lexically_normal().parent_path();
+  fs::create_directories(parent, ec);
+  if (ec) {
+    throw Error("cache folder " + dir_.string() + ": cannot create " + parent.string() + ": " +
+                ec.message());
+  }
+  lock_.emplace(dir_, options.job, options.lock_wait_s, "cache folder", options.lock_notice);
+  fs::create_directories(dir_, ec);
+  if (ec) throw Error("cache folder " + dir_.string() + ": cannot create it: " + ec.message());
+  // Written (atomically) at every opening: that also proves the folder writable now, rather
+  // than after a job's worth of pairs.
+  try {
+    WriteFileAtomically(dir_ / "CACHEDIR.TAG", kCacheDirTag);
+  } catch (const Error& e) {
+    throw Error("cache folder " + dir_.string() + " is not writable: " + e.what());
+  }
+}
+
+fs::path CacheFolder::EntryPath(const Sha256Digest& key) const {
+  return dir_ / (ToHex(key) + kEntryExtension);
+}
+
+void CacheFolder::Unlock() { lock_.reset(); }
+
+void CacheFolder::CheckLocked() const {
+  if (!lock_) throw Error("internal: cache folder " + dir_.string() + " used after Unlock");
+}
+
+std::optional<std::string> CacheFolder::Read(const Sha256Digest& key) {
+  CheckLocked();
+  const fs::path path = EntryPath(key);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;  // absent (or unreadable: rewritten below by the caller)
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::optional<std::string> payload = in.bad() ? std::nullopt : ParseEntry(bytes, key, version_);
+  std::error_code ec;
+  if (!payload) {
+    ++rejected_;
+    fs::remove(path, ec);
+    return std::nullopt;
+  }
+  // Used now: the last to be evicted (a failure only makes it look older).
+  fs::last_write_time(path, fs::file_time_type::clock::now(), ec);
+  return payload;
+}
+
+void CacheFolder::Discard(const Sha256Digest& key) {
+  CheckLocked();
+  ++rejected_;
+  std::error_code ec;
+  fs::remove(EntryPath(key), ec);
+}
+
+void CacheFolder::Write(const Sha256Digest& key, const std::string& payload) {
+  CheckLocked();
+  WriteFileAtomically(EntryPath(key), CacheEntryBytes(key, version_, payload), {},
+                      AtomicWrite::kNoSync);
+}
+
+int CacheFolder::Evict() {
+  CheckLocked();
+  struct Entry {
+    fs::file_time_type used;
+    fs::path path;
+    std::int64_t bytes;
+  };
+  std::vector<Entry> entries;
+  std::int64_t total = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    std::error_code entry_ec;
+    if (IsEntryTempName(name)) {  // the folder is locked: nobody is writing it
+      fs::remove(it->path(), entry_ec);
+      continue;
+    }
+    if (!IsEntryName(name) || !it->is_regular_file(entry_ec)) continue;
+    const auto bytes = static_cast<std::int64_t>(it->file_size(entry_ec));
+    const fs::file_time_type used = it->last_write_time(entry_ec);
+    if (entry_ec) continue;
+    entries.push_back({used, it->path(), bytes});
+    total += bytes;
+  }
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return std::tie(a.used, a.path) < std::tie(b.used, b.path);
+  });
+  int removed = 0;
+  for (const Entry& entry : entries) {
+    if (total <= max_bytes_) break;
+    std::error_code remove_ec;
+    if (fs::remove(entry.path, remove_ec)) {
+      total -= entry.bytes;
+      ++removed;
+    }
+  }
+  return removed;
+}
+
+}  // namespace fleetmerge

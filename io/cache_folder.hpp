@@ -1,0 +1,89 @@
+// A folder of cache entries that re-runs share (the pair cache, pipeline/pair_cache.hpp, keeps
+// its maps' preparations and pairs' hypotheses here). Each entry is one file, `<key>.entry`,
+// named by the 64 hex digits of its key (a SHA-256 of everything its content depends on) and
+// written atomically (io/atomic_file.hpp). Its bytes:
+//
+//   "fleetmerge cache" (16 bytes)  format magic
+//   u32 kFormatVersion             this layout
+//   u32 0x01020304                 byte order of the machine that wrote it
+//   u32 n, n bytes                 the fleetmerge version that wrote it
+//   32 bytes                       the key (must equal the file name's)
+//   u64 n, n bytes                 the payload
+//   32 bytes                       SHA-256 of all the bytes above
+//
+// An entry is trusted only when all of that checks out: a truncated, corrupt or foreign file
+// (another key's entry under this name, another version's, another byte order's) is counted,
+// removed and reported as absent, so its caller computes it again and writes it anew.
+//
+// One job at a time: the folder is locked (io/folder_lock.hpp, label "cache folder") from the
+// constructor to Unlock (or the destructor). A second job sharing the cache waits for the first and
+// then finds the first job's entries. Entries read are marked as used (their modification time),
+// and Evict removes the least recently used until the folder fits its size bound.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "io/folder_lock.hpp"
+#include "io/sha256.hpp"
+
+namespace fleetmerge {
+
+struct CacheFolderOptions {
+  std::int64_t max_bytes = std::int64_t(1024) << 20;
+  double lock_wait_s = 0.0;  // for another job using the folder (0: fail at once)
+  FolderLock::WaitNotice lock_notice;
+  std::string job;  // who holds the lock (named to a waiting job)
+};
+
+class CacheFolder {
+ public:
+  static constexpr std::uint32_t kFormatVersion = 1;
+
+  // Creates `dir` (and its parents) if needed and locks it. Entries are valid only for
+  // `version` (fleetmerge's): others are never trusted. Throws fleetmerge::Error naming `dir`
+  // when it is not a folder, cannot be created, or is not writable, or when another job holds
+  // it beyond options.lock_wait_s.
+  CacheFolder(const std::filesystem::path& dir, const std::string& version,
+              const CacheFolderOptions& options);
+  CacheFolder(const CacheFolder&) = delete;
+  CacheFolder& operator=(const CacheFolder&) = delete;
+
+  // The payload stored under `key`; nullopt when there is none or it is not to be trusted (then
+  // the file is removed and counted in rejected()). Safe to call from several threads.
+  std::optional<std::string> Read(const Sha256Digest& key);
+  // Removes the entry under `key`, counted in rejected(): for a caller that found its payload
+  // unusable.
+  void Discard(const Sha256Digest& key);
+  // Stores `payload` under `key`, replacing any entry. Throws fleetmerge::Error naming the file
+  // when it cannot be written. Safe to call from several threads.
+  void Write(const Sha256Digest& key, const std::string& payload);
+  // Removes the least recently used entries (and temporary files of killed jobs) until the
+  // entries take at most options.max_bytes. Returns how many entries it removed.
+  int Evict();
+
+  // Releases the folder's lock: another job may use it now. Read, Write and Evict must not be
+  // called afterwards (they throw fleetmerge::Error).
+  void Unlock();
+
+  std::filesystem::path EntryPath(const Sha256Digest& key) const;
+  const std::filesystem::path& dir() const { return dir_; }
+  int rejected() const { return rejected_; }
+
+ private:
+  void CheckLocked() const;
+  std::filesystem::path dir_;
+  std::string version_;
+  std::int64_t max_bytes_;
+  std::optional<FolderLock> lock_;
+  std::atomic<int> rejected_{0};
+};
+
+// The entry file's bytes for `payload` (exposed for tests that forge entries).
+std::string CacheEntryBytes(const Sha256Digest& key, const std::string& version,
+                            const std::string& payload);
+
+}  // namespace fleetmerge

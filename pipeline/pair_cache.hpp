@@ -1,0 +1,90 @@
+// Re-runs that reuse earlier work: every pair's hypotheses (pipeline/all_pairs.hpp), kept in a
+// cache folder (io/cache_folder.hpp) across runs. Fleets merge maps of one site day after day;
+// with the cache a re-run computes only the pairs it has not seen: adding one map to N costs
+// N pairs instead of (N + 1) N / 2.
+//
+// A pair's entry is keyed by the SHA-256 of
+//   - both maps' contents as the pair search sees them (MapDigest: size, resolution, origin and
+//     every cell, after resampling to the job's resolution), in the pair's order (a before b),
+//   - every PairOptions field (PairOptionsDigest; MergeFleet copies min_overlap_cells in), and
+//   - fleetmerge's version (a new version may compute other hypotheses).
+// What the entry holds is exactly what ComputeAllPairs returns for the pair (doubles as their
+// bytes), so a merge with the cache is the merge without it, bit for bit.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "core/occupancy_grid.hpp"
+#include "io/cache_folder.hpp"
+#include "io/sha256.hpp"
+#include "job/pair_options.hpp"
+#include "pipeline/all_pairs.hpp"
+
+namespace fleetmerge {
+
+// The digest of a map's geometry (size, resolution, origin) and cells.
+Sha256Digest MapDigest(const OccupancyGrid& grid);
+// The digest of every PairOptions field and of `version`.
+Sha256Digest PairOptionsDigest(const PairOptions& options, const std::string& version);
+
+// The hypotheses and scores of a pair (not its indices, nor the fleet's decisions on it), and
+// back. ParsePairOutcome returns nullopt for bytes that are not such a payload.
+std::string PairOutcomePayload(const PairOutcome& outcome);
+std::optional<PairOutcome> ParsePairOutcome(const std::string& payload);
+
+// Counts of one job's use of the cache.
+struct PairCacheStats {
+  int pairs_cached = 0;    // taken from the cache
+  int pairs_computed = 0;  // computed (and stored)
+  int maps_prepared = 0;   // maps prepared for the pairs computed (pipeline/prepared_map.hpp)
+  int rejected = 0;        // entries found corrupt, truncated, foreign or of another version
+  int evicted = 0;         // entries removed for the size bound
+  int write_failures = 0;  // entries that could not be stored (the job goes on without them)
+  std::string first_write_error;
+};
+
+class PairCache {
+ public:
+  // Opens (creates, locks) the cache folder; see CacheFolder for the errors. `version` is
+  // fleetmerge's (FLEETMERGE_VERSION_STRING; tests give others).
+  PairCache(const std::filesystem::path& dir, const std::string& version,
+            const CacheFolderOptions& options);
+
+  // For a job with these pair options: the pair of maps with these digests (a before b), or
+  // nullopt. The outcome's indices are left 0: the caller sets them.
+  std::optional<PairOutcome> FindPair(const Sha256Digest& options, const Sha256Digest& a,
+                                      const Sha256Digest& b);
+  // Stores the pair. A failure (a full disk) does not fail the job, whose result is already
+  // computed: it is counted, and the first message kept, in stats().
+  void StorePair(const Sha256Digest& options, const Sha256Digest& a, const Sha256Digest& b,
+                 const PairOutcome& outcome);
+  // Evicts the least recently used entries beyond the size bound (CacheFolder::Evict) and
+  // releases the folder for other jobs. MergeFleet closes its cache once the pairs are done, so
+  // a job holds the cache only during its pair search. Nothing but stats() afterwards; a second
+  // Close does nothing.
+  void Close();
+
+  const std::string& version() const { return version_; }
+  const std::filesystem::path& dir() const { return folder_.dir(); }
+  PairCacheStats stats() const;
+  // Counted by ComputeAllPairs.
+  void CountPairs(int cached, int computed, int maps_prepared);
+
+ private:
+  static Sha256Digest PairKey(const Sha256Digest& options, const Sha256Digest& a,
+                              const Sha256Digest& b);
+  std::string version_;
+  CacheFolder folder_;
+  bool closed_ = false;
+  std::atomic<int> pairs_cached_{0}, pairs_computed_{0}, maps_prepared_{0}, evicted_{0},
+      write_failures_{0};
+  mutable std::mutex error_mutex_;
+  std::string first_write_error_;
+};
+
+}  // namespace fleetmerge

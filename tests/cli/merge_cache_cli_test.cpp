@@ -1,0 +1,167 @@
+// `fleetmerge merge --cache DIR` and the job key `cache:` end to end: a re-run takes its pairs
+// from the cache (printed, and in report.json) with the same result; a cache folder that is a
+// file fails the job naming it; a cache entry of garbage is rebuilt.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "tests/support/files.hpp"
+#include "tests/support/fleetmerge_cli.hpp"
+#include "tests/support/run_command.hpp"
+#include "tests/support/shared_data.hpp"
+
+namespace fleetmerge {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using testing::Fleetmerge;
+using testing::ReadFile;
+using testing::ShellQuote;
+using testing::WriteFile;
+
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+class MergeCacheCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = testing::MakeTempDir("merge_cache_cli");
+    ASSERT_EQ(Fleetmerge("example " + ShellQuote(dir_ / "ex")).exit_code, 0);
+  }
+  testing::CommandResult Merge(const fs::path& out, const std::string& extra) const {
+    return Fleetmerge("merge --quiet --out " + ShellQuote(out) + " " + extra + " " +
+                      ShellQuote(dir_ / "ex" / "robot_a.yaml") + " " +
+                      ShellQuote(dir_ / "ex" / "robot_b.yaml"));
+  }
+  // report.json without what differs between runs of one job (times, the cache's counts).
+  static json Comparable(json report) {
+    report.erase("timing_ms");
+    report.erase("cache");
+    return report;
+  }
+  fs::path dir_;
+};
+
+TEST_F(MergeCacheCliTest, ARerunTakesThePairFromTheCache) {
+  const fs::path cache = dir_ / "cache";
+  const auto plain = Merge(dir_ / "plain", "");
+  ASSERT_EQ(plain.exit_code, 0) << plain.both();
+  EXPECT_FALSE(Contains(plain.out, "from the cache"));
+  const auto cold = Merge(dir_ / "cold", "--cache " + ShellQuote(cache));
+  ASSERT_EQ(cold.exit_code, 0) << cold.both();
+  EXPECT_TRUE(Contains(cold.out, "merge: pairs: 0 from the cache, 1 computed")) << cold.out;
+  const auto warm = Merge(dir_ / "warm", "--cache " + ShellQuote(cache));
+  ASSERT_EQ(warm.exit_code, 0) << warm.both();
+  EXPECT_TRUE(Contains(warm.out, "merge: pairs: 1 from the cache, 0 computed")) << warm.out;
+  const json plain_report = json::parse(ReadFile(dir_ / "plain" / "report.json"));
+  const json warm_report = json::parse(ReadFile(dir_ / "warm" / "report.json"));
+  EXPECT_FALSE(plain_report.contains("cache"));
+  EXPECT_EQ(warm_report["cache"]["dir"], cache.generic_string());
+  EXPECT_EQ(warm_report["cache"]["pairs_cached"], 1);
+  EXPECT_EQ(warm_report["cache"]["pairs_computed"], 0);
+  EXPECT_EQ(warm_report["cache"]["maps_prepared"], 0);
+  EXPECT_EQ(warm_report["cache"]["max_mb"], 1024);
+  // The same poses, pairs and hypotheses (report.json writes doubles exactly), the same cells.
+  EXPECT_EQ(Comparable(warm_report), Comparable(plain_report));
+  EXPECT_EQ(ReadFile(dir_ / "warm" / "merged_0.pgm"), ReadFile(dir_ / "plain" / "merged_0.pgm"));
+}
+
+TEST_F(MergeCacheCliTest, AJobFilesCacheIsRelativeToItAndTheFlagOverridesIt) {
+  fs::create_directories(dir_ / "jobs");
+  WriteFile(dir_ / "jobs" / "job.yaml",
+            "maps: [../ex/robot_a.yaml, ../ex/robot_b.yaml]\noutput: out\ncache: site_cache\n"
+            "cache_max_mb: 5\n");
+  const auto first = Fleetmerge("merge --quiet " + ShellQuote(dir_ / "jobs" / "job.yaml"));
+  ASSERT_EQ(first.exit_code, 0) << first.both();
+  EXPECT_TRUE(Contains(first.out, "pairs: 0 from the cache, 1 computed")) << first.out;
+  EXPECT_TRUE(fs::is_directory(dir_ / "jobs" / "site_cache"));
+  const json report = json::parse(ReadFile(dir_ / "jobs" / "out" / "report.json"));
+  EXPECT_EQ(report["cache"]["max_mb"], 5);
+  const auto second = Fleetmerge("merge --quiet " + ShellQuote(dir_ / "jobs" / "job.yaml"));
+  EXPECT_TRUE(Contains(second.out, "pairs: 1 from the cache, 0 computed")) << second.out;
+  const fs::path other = dir_ / "other_cache";
+  const auto flag = Fleetmerge("merge --quiet --cache " + ShellQuote(other) + " " +
+                               ShellQuote(dir_ / "jobs" / "job.yaml"));
+  ASSERT_EQ(flag.exit_code, 0) << flag.both();
+  EXPECT_TRUE(Contains(flag.out, "pairs: 0 from the cache, 1 computed")) << flag.out;
+  EXPECT_TRUE(fs::is_directory(other));
+}
+
+TEST_F(MergeCacheCliTest, TwoJobsSharingACacheAtOnceTakeTurns) {
+  // Two merges into different folders started together: the second waits for the cache's lock,
+  // then finds the first's pair. Either way exactly one of them computes it.
+  const fs::path cache = dir_ / "cache";
+  std::string both;
+  for (const char* out : {"one", "two"}) {
+    both += std::string(FLEETMERGE_EXECUTABLE) + " merge --quiet --cache " + ShellQuote(cache) +
+            " --out " + ShellQuote(dir_ / out) + " " + ShellQuote(dir_ / "ex" / "robot_a.yaml") +
+            " " + ShellQuote(dir_ / "ex" / "robot_b.yaml") + " >" +
+            ShellQuote(dir_ / (std::string(out) + ".log")) + " 2>&1 & ";
+  }
+  ASSERT_EQ(testing::RunCommand(both + "wait").exit_code, 0);
+  int computed = 0, cached = 0;
+  for (const char* out : {"one", "two"}) {
+    const std::string log = ReadFile(dir_ / (std::string(out) + ".log"));
+    ASSERT_TRUE(fs::exists(dir_ / out / "report.json")) << log;
+    const json report = json::parse(ReadFile(dir_ / out / "report.json"));
+    computed += report["cache"]["pairs_computed"].get<int>();
+    cached += report["cache"]["pairs_cached"].get<int>();
+    EXPECT_EQ(report["cache"]["entries_rejected"], 0) << log;
+  }
+  EXPECT_EQ(computed, 1);
+  EXPECT_EQ(cached, 1);
+  EXPECT_EQ(Comparable(json::parse(ReadFile(dir_ / "one" / "report.json"))),
+            Comparable(json::parse(ReadFile(dir_ / "two" / "report.json"))));
+}
+
+TEST_F(MergeCacheCliTest, ACacheFolderThatIsAFileFailsTheJobNamingIt) {
+  const fs::path file = dir_ / "not_a_folder";
+  WriteFile(file, "precious");
+  const auto run = Merge(dir_ / "out", "--cache " + ShellQuote(file));
+  EXPECT_EQ(run.exit_code, 1) << run.both();
+  EXPECT_TRUE(Contains(run.err, "cache folder " + file.string() + " exists and is not a folder"))
+      << run.err;
+  EXPECT_EQ(ReadFile(file), "precious");
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "report.json"));
+}
+
+TEST_F(MergeCacheCliTest, ACacheInsideTheOutputFolderIsRefused) {
+  for (const fs::path& cache : {dir_ / "out" / "cache", dir_ / "out"}) {
+    // "out/" is the folder "out" too.
+    const auto run = Merge(dir_ / "out/", "--cache " + ShellQuote(cache));
+    EXPECT_EQ(run.exit_code, 1) << run.both();
+    EXPECT_TRUE(Contains(run.err, "cache folder " + cache.string() +
+                                      " is inside the output folder " + (dir_ / "out/").string()))
+        << run.err;
+    EXPECT_FALSE(fs::exists(cache / "CACHEDIR.TAG"));
+  }
+}
+
+TEST_F(MergeCacheCliTest, AGarbageEntryIsRebuilt) {
+  const fs::path cache = dir_ / "cache";
+  ASSERT_EQ(Merge(dir_ / "out", "--cache " + ShellQuote(cache)).exit_code, 0);
+  int entries = 0;
+  for (const auto& f : fs::directory_iterator(cache)) {
+    if (f.path().extension() != ".entry") continue;
+    WriteFile(f.path(), "garbage, not a cache entry");
+    ++entries;
+  }
+  ASSERT_EQ(entries, 1);
+  const auto rebuilt = Merge(dir_ / "out", "--cache " + ShellQuote(cache));
+  ASSERT_EQ(rebuilt.exit_code, 0) << rebuilt.both();
+  EXPECT_TRUE(Contains(rebuilt.out,
+                       "pairs: 0 from the cache, 1 computed; 1 bad cache entries "
+                       "rebuilt"))
+      << rebuilt.out;
+  const json report = json::parse(ReadFile(dir_ / "out" / "report.json"));
+  EXPECT_EQ(report["cache"]["entries_rejected"], 1);
+  const auto again = Merge(dir_ / "out", "--cache " + ShellQuote(cache));
+  EXPECT_TRUE(Contains(again.out, "pairs: 1 from the cache, 0 computed")) << again.out;
+}
+
+}  // namespace
+}  // namespace fleetmerge

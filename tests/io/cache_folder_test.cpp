@@ -1,0 +1,183 @@
+// CacheFolder (io/cache_folder.hpp): entries round-trip; bad entries (garbage, truncated,
+// another key's, another version's, another format's) are rejected and removed; the size bound
+// evicts the least recently used; a folder that is a file, lies under a file or is not writable
+// is a clear error naming it; a second job waits for the folder's lock.
+#include "io/cache_folder.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <thread>
+
+#include "core/error.hpp"
+#include "tests/support/files.hpp"
+#include "tests/support/shared_data.hpp"
+
+namespace fleetmerge {
+namespace {
+
+namespace fs = std::filesystem;
+namespace ft = fleetmerge::testing;
+
+std::string ErrorOf(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool Contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+Sha256Digest Key(const std::string& name) { return Sha256Of(name); }
+
+class CacheFolderTest : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = ft::MakeTempDir("cache_folder") / "cache"; }
+  CacheFolderOptions Options(std::int64_t max_bytes = std::int64_t(1) << 30) const {
+    CacheFolderOptions options;
+    options.max_bytes = max_bytes;
+    options.job = "test job";
+    return options;
+  }
+  fs::path dir_;
+};
+
+TEST_F(CacheFolderTest, EntriesRoundTripAcrossOpenings) {
+  {
+    CacheFolder cache(dir_, "1.2.3", Options());
+    EXPECT_FALSE(cache.Read(Key("a")));
+    cache.Write(Key("a"), std::string("payload\0with a zero", 19));
+    cache.Write(Key("b"), "");
+    EXPECT_EQ(cache.rejected(), 0);
+  }
+  CacheFolder cache(dir_, "1.2.3", Options());
+  EXPECT_EQ(cache.Read(Key("a")).value_or("absent"), std::string("payload\0with a zero", 19));
+  EXPECT_EQ(cache.Read(Key("b")).value_or("absent"), "");
+  EXPECT_FALSE(cache.Read(Key("c")));
+  EXPECT_EQ(cache.rejected(), 0);
+  EXPECT_TRUE(fs::exists(dir_ / "CACHEDIR.TAG"));
+}
+
+TEST_F(CacheFolderTest, BadEntriesAreRejectedAndRemoved) {
+  CacheFolder cache(dir_, "1.2.3", Options());
+  const std::string payload(300, 'p');
+  const std::string good = CacheEntryBytes(Key("k"), "1.2.3", payload);
+  const fs::path path = cache.EntryPath(Key("k"));
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"garbage", "not an entry at all"},
+      {"empty", ""},
+      {"truncated", good.substr(0, good.size() - 1)},
+      {"a byte flipped",
+       [&] {
+         std::string b = good;
+         b[60] ^= 4;
+         return b;
+       }()},
+      {"another key's", CacheEntryBytes(Key("other"), "1.2.3", payload)},
+      {"another version's", CacheEntryBytes(Key("k"), "1.2.4", payload)},
+      {"another format's", [&] {  // a sound checksum over a format version 2 header
+         std::string b = good.substr(0, good.size() - 32);
+         b[16] = 2;
+         const Sha256Digest sum = Sha256Of(b);
+         return b + std::string(sum.begin(), sum.end());
+       }()}};
+  int rejected = 0;
+  for (const auto& [what, bytes] : bad) {
+    ft::WriteFile(path, bytes);
+    EXPECT_FALSE(cache.Read(Key("k"))) << what;
+    EXPECT_EQ(cache.rejected(), ++rejected) << what;
+    EXPECT_FALSE(fs::exists(path)) << what << " is removed";
+  }
+  ft::WriteFile(path, good);
+  EXPECT_EQ(cache.Read(Key("k")).value_or(""), payload);
+}
+
+TEST_F(CacheFolderTest, EvictsTheLeastRecentlyUsedBeyondTheBound) {
+  const std::string payload(1000, 'x');
+  const std::int64_t entry_bytes =
+      static_cast<std::int64_t>(CacheEntryBytes(Key("0"), "v", payload).size());
+  {
+    CacheFolder cache(dir_, "v", Options());
+    for (int k = 0; k < 6; ++k) cache.Write(Key(std::to_string(k)), payload);
+  }
+  // Ages 0 (oldest) .. 5, an hour apart; then entry 0 is read: the most recently used.
+  const auto now = fs::file_time_type::clock::now();
+  for (int k = 0; k < 6; ++k) {
+    fs::last_write_time(dir_ / (ToHex(Key(std::to_string(k))) + ".entry"),
+                        now - std::chrono::hours(10 - k));
+  }
+  // A killed job's temporary file is removed by the eviction too.
+  const fs::path temp = dir_ / ("." + ToHex(Key("9")) + ".entry.tmp.1234abcd");
+  ft::WriteFile(temp, "half");
+  ft::WriteFile(dir_ / "notes.txt", "a user's file, not an entry");
+  CacheFolder cache(dir_, "v", Options(3 * entry_bytes));
+  ASSERT_TRUE(cache.Read(Key("0")));
+  EXPECT_EQ(cache.Evict(), 3);
+  EXPECT_TRUE(cache.Read(Key("0")));   // used last
+  EXPECT_FALSE(cache.Read(Key("1")));  // the oldest unused ones went
+  EXPECT_FALSE(cache.Read(Key("2")));
+  EXPECT_FALSE(cache.Read(Key("3")));
+  EXPECT_TRUE(cache.Read(Key("4")));
+  EXPECT_TRUE(cache.Read(Key("5")));
+  EXPECT_FALSE(fs::exists(temp));
+  EXPECT_TRUE(fs::exists(dir_ / "notes.txt"));
+  EXPECT_EQ(cache.Evict(), 0);
+}
+
+TEST_F(CacheFolderTest, AFolderThatIsAFileIsAnErrorNamingIt) {
+  fs::create_directories(dir_.parent_path());
+  ft::WriteFile(dir_, "a file");
+  const std::string error = ErrorOf([&] { CacheFolder cache(dir_, "v", Options()); });
+  EXPECT_TRUE(Contains(error, "cache folder " + dir_.string() + " exists and is not a folder"))
+      << error;
+  EXPECT_EQ(ft::ReadFile(dir_), "a file");  // untouched
+}
+
+TEST_F(CacheFolderTest, AFolderUnderAFileIsAnErrorNamingIt) {
+  fs::create_directories(dir_.parent_path());
+  ft::WriteFile(dir_.parent_path() / "plain", "");
+  const fs::path under = dir_.parent_path() / "plain" / "cache";
+  const std::string error = ErrorOf([&] { CacheFolder cache(under, "v", Options()); });
+  EXPECT_TRUE(Contains(error, "cache folder " + under.string())) << error;
+}
+
+TEST_F(CacheFolderTest, AnUnwritableFolderIsAnErrorNamingIt) {
+  fs::create_directories(dir_);
+  fs::permissions(dir_, fs::perms::owner_read | fs::perms::owner_exec);
+  if (::access(dir_.c_str(), W_OK) == 0) {
+    fs::permissions(dir_, fs::perms::owner_all);
+    GTEST_SKIP() << "running with privileges that write any folder (root)";
+  }
+  const std::string error = ErrorOf([&] { CacheFolder cache(dir_, "v", Options()); });
+  fs::permissions(dir_, fs::perms::owner_all);
+  EXPECT_TRUE(Contains(error, "cache folder " + dir_.string() + " is not writable")) << error;
+}
+
+TEST_F(CacheFolderTest, ASecondJobWaitsForTheLockOrFailsNamingTheHolder) {
+  std::optional<CacheFolder> first;
+  first.emplace(dir_, "v", Options());
+  first->Write(Key("a"), "from the first job");
+  const std::string error = ErrorOf([&] { CacheFolder second(dir_, "v", Options()); });
+  EXPECT_TRUE(Contains(error, "cache folder")) << error;
+  EXPECT_TRUE(Contains(error, "test job")) << error;
+  std::thread release([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    first.reset();
+  });
+  CacheFolderOptions wait = Options();
+  wait.lock_wait_s = 30;
+  CacheFolder second(dir_, "v", wait);  // waits for the first, then sees its entry
+  release.join();
+  EXPECT_EQ(second.Read(Key("a")).value_or(""), "from the first job");
+}
+
+}  // namespace
+}  // namespace fleetmerge

@@ -1,0 +1,305 @@
+// The pair cache (pipeline/pair_cache.hpp) on robots cut from a real building: a merge with the
+// cache is the merge without it (poses, pairs, merged cells, bit for bit), a re-run computes no
+// pair, one map more computes only its pairs, and bad entries (garbage, truncated, foreign,
+// another version's) are rebuilt, never trusted.
+#include "pipeline/pair_cache.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "io/map_io.hpp"
+#include "pipeline/fleet_merge.hpp"
+#include "sim/ground_truth_pair.hpp"
+#include "tests/support/shared_data.hpp"
+
+namespace fleetmerge {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kVersion = "test-version";
+
+std::vector<const OccupancyGrid*> FirstMaps(const GroundTruthFleet& fleet, std::size_t count) {
+  std::vector<const OccupancyGrid*> out;
+  for (std::size_t m = 0; m < count; ++m) out.push_back(&fleet.maps[m]);
+  return out;
+}
+
+bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void ExpectSamePose(const Pose2& a, const Pose2& b, const std::string& what) {
+  EXPECT_TRUE(SameBits(a.x_m(), b.x_m())) << what;
+  EXPECT_TRUE(SameBits(a.y_m(), b.y_m())) << what;
+  EXPECT_TRUE(SameBits(a.yaw_rad(), b.yaw_rad())) << what;
+}
+
+// Everything a merge reports, compared bit for bit.
+void ExpectSameMerge(const FleetResult& expected, const FleetResult& actual) {
+  ASSERT_EQ(expected.pairs.size(), actual.pairs.size());
+  for (std::size_t k = 0; k < expected.pairs.size(); ++k) {
+    const PairOutcome& e = expected.pairs[k];
+    const PairOutcome& a = actual.pairs[k];
+    const std::string pair = std::to_string(e.a) + "-" + std::to_string(e.b);
+    EXPECT_EQ(a.a, e.a);
+    EXPECT_EQ(a.b, e.b);
+    ASSERT_EQ(a.hypotheses.size(), e.hypotheses.size()) << pair;
+    for (std::size_t h = 0; h < e.hypotheses.size(); ++h) {
+      const std::string what = pair + " hypothesis " + std::to_string(h);
+      ExpectSamePose(e.hypotheses[h].T_a_b, a.hypotheses[h].T_a_b, what);
+      EXPECT_TRUE(SameBits(e.hypotheses[h].omega, a.hypotheses[h].omega)) << what;
+      EXPECT_EQ(e.hypotheses[h].overlap_cells, a.hypotheses[h].overlap_cells) << what;
+      EXPECT_TRUE(SameBits(e.hypotheses[h].wall_agreement, a.hypotheses[h].wall_agreement));
+      EXPECT_TRUE(SameBits(e.hypotheses[h].evidence_nats, a.hypotheses[h].evidence_nats));
+    }
+    EXPECT_EQ(a.overlap_cells, e.overlap_cells) << pair;
+    EXPECT_TRUE(SameBits(a.wall_agreement, e.wall_agreement)) << pair;
+    EXPECT_TRUE(SameBits(a.margin_nats, e.margin_nats)) << pair;
+    EXPECT_EQ(a.ambiguous, e.ambiguous) << pair;
+    EXPECT_EQ(a.accepted, e.accepted) << pair;
+    EXPECT_EQ(a.edge_hypothesis, e.edge_hypothesis) << pair;
+    EXPECT_EQ(a.note, e.note) << pair;
+  }
+  EXPECT_EQ(actual.component_of, expected.component_of);
+  ASSERT_EQ(actual.T_component_map.size(), expected.T_component_map.size());
+  for (std::size_t m = 0; m < expected.T_component_map.size(); ++m) {
+    ExpectSamePose(expected.T_component_map[m], actual.T_component_map[m],
+                   "map " + std::to_string(m));
+  }
+  ASSERT_EQ(actual.components.size(), expected.components.size());
+  for (std::size_t c = 0; c < expected.components.size(); ++c) {
+    const auto& e = expected.components[c].merged;
+    const auto& a = actual.components[c].merged;
+    ASSERT_EQ(a.has_value(), e.has_value()) << "component " << c;
+    if (!e) continue;
+    ASSERT_EQ(a->width(), e->width());
+    ASSERT_EQ(a->height(), e->height());
+    ExpectSamePose(e->geometry().T_map_grid(), a->geometry().T_map_grid(), "merged origin");
+    EXPECT_EQ(cv::countNonZero(a->cells() != e->cells()), 0) << "component " << c;
+  }
+}
+
+std::vector<fs::path> Entries(const fs::path& dir) {
+  std::vector<fs::path> entries;
+  for (const auto& f : fs::directory_iterator(dir)) {
+    if (f.path().extension() == ".entry") entries.push_back(f.path());
+  }
+  return entries;
+}
+
+std::string ReadBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void WriteBytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+class PairCacheTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    FLEETMERGE_REQUIRE_SHARED_MAPS();
+    std::mt19937 rng(5);
+    fleet_ = CutFleet(LoadMap(*testing::SharedMapsDir() / "intel_lab.yaml").grid, 5, rng);
+    dir_ = testing::MakeTempDir("pair_cache") / "cache";
+    options_.threads = 2;
+  }
+  // A merge of the first `count` robots with a fresh opening of the cache (as a new run would),
+  // returning its counts in `stats`.
+  FleetResult Cached(std::size_t count, PairCacheStats& stats,
+                     const std::string& version = kVersion) const {
+    PairCache cache(dir_, version, {});
+    FleetResult result = MergeFleet(FirstMaps(fleet_, count), 0, options_, {}, &cache);
+    stats = cache.stats();
+    return result;
+  }
+  FleetResult Uncached(std::size_t count) const {
+    return MergeFleet(FirstMaps(fleet_, count), 0, options_);
+  }
+  GroundTruthFleet fleet_;
+  fs::path dir_;
+  FleetOptions options_;
+};
+
+TEST_F(PairCacheTest, ARerunTakesEveryPairFromTheCacheWithTheSameResult) {
+  const FleetResult uncached = Uncached(4);
+  PairCacheStats cold, warm;
+  const FleetResult first = Cached(4, cold);
+  EXPECT_EQ(cold.pairs_cached, 0);
+  EXPECT_EQ(cold.pairs_computed, 6);
+  EXPECT_EQ(cold.maps_prepared, 4);
+  EXPECT_EQ(Entries(dir_).size(), 6u);
+  const FleetResult second = Cached(4, warm);
+  EXPECT_EQ(warm.pairs_cached, 6);
+  EXPECT_EQ(warm.pairs_computed, 0);
+  EXPECT_EQ(warm.maps_prepared, 0);  // no pair to compute: no map prepared
+  EXPECT_EQ(warm.rejected, 0);
+  // The merge must have merged something for the comparison to mean anything.
+  int merged = 0;
+  for (const auto& c : uncached.components) merged += c.maps.size() >= 2;
+  EXPECT_GE(merged, 1);
+  ExpectSameMerge(uncached, first);
+  ExpectSameMerge(uncached, second);
+}
+
+TEST_F(PairCacheTest, OneMapMoreComputesOnlyItsPairs) {
+  PairCacheStats four, five;
+  Cached(4, four);
+  const FleetResult cached = Cached(5, five);
+  EXPECT_EQ(five.pairs_cached, 6);
+  EXPECT_EQ(five.pairs_computed, 4);
+  EXPECT_EQ(five.maps_prepared, 5);  // each new pair has an old map in it
+  EXPECT_EQ(Entries(dir_).size(), 10u);
+  ExpectSameMerge(Uncached(5), cached);
+}
+
+TEST_F(PairCacheTest, GarbageTruncatedAndCorruptEntriesAreRebuilt) {
+  PairCacheStats stats;
+  Cached(4, stats);
+  const std::vector<fs::path> entries = Entries(dir_);
+  ASSERT_EQ(entries.size(), 6u);
+  // Six ways an entry goes bad: garbage text, empty, truncated, one payload byte flipped, the
+  // checksum flipped, and one byte more.
+  const std::string good = ReadBytes(entries[0]);
+  WriteBytes(entries[0], "this is not a cache entry\n");
+  WriteBytes(entries[1], "");
+  std::string bytes = ReadBytes(entries[2]);
+  WriteBytes(entries[2], bytes.substr(0, bytes.size() / 2));
+  bytes = ReadBytes(entries[3]);
+  bytes[bytes.size() - 40] ^= 0x01;
+  WriteBytes(entries[3], bytes);
+  bytes = ReadBytes(entries[4]);
+  bytes.back() ^= 0x80;
+  WriteBytes(entries[4], bytes);
+  WriteBytes(entries[5], ReadBytes(entries[5]) + "x");
+  PairCacheStats rebuilt;
+  const FleetResult result = Cached(4, rebuilt);
+  EXPECT_EQ(rebuilt.rejected, 6);
+  EXPECT_EQ(rebuilt.pairs_computed, 6);
+  EXPECT_EQ(rebuilt.pairs_cached, 0);
+  ExpectSameMerge(Uncached(4), result);
+  EXPECT_EQ(ReadBytes(entries[0]), good);  // rewritten whole
+  PairCacheStats again;
+  Cached(4, again);
+  EXPECT_EQ(again.pairs_cached, 6);
+  EXPECT_EQ(again.rejected, 0);
+}
+
+TEST_F(PairCacheTest, AnEntryUnderAnotherPairsNameIsNotTrusted) {
+  PairCacheStats stats;
+  Cached(4, stats);
+  const std::vector<fs::path> entries = Entries(dir_);
+  ASSERT_EQ(entries.size(), 6u);
+  // Every entry gets its neighbour's (sound) bytes: all six are foreign to their names.
+  std::vector<std::string> bytes;
+  for (const auto& e : entries) bytes.push_back(ReadBytes(e));
+  for (std::size_t k = 0; k < entries.size(); ++k) WriteBytes(entries[k], bytes[(k + 1) % 6]);
+  PairCacheStats foreign;
+  const FleetResult result = Cached(4, foreign);
+  EXPECT_EQ(foreign.rejected, 6);
+  EXPECT_EQ(foreign.pairs_computed, 6);
+  ExpectSameMerge(Uncached(4), result);
+}
+
+TEST_F(PairCacheTest, AnotherVersionsCacheIsIgnored) {
+  PairCacheStats old_version, new_version;
+  Cached(4, old_version, "0.0.1-old");
+  EXPECT_EQ(old_version.pairs_computed, 6);
+  Cached(4, new_version, kVersion);
+  EXPECT_EQ(new_version.pairs_cached, 0);
+  EXPECT_EQ(new_version.pairs_computed, 6);
+  // Both versions' entries are kept side by side (each is found by its own version only).
+  const std::vector<fs::path> before = Entries(dir_);
+  ASSERT_EQ(before.size(), 12u);
+  PairCacheStats stats;
+  Cached(4, stats, kVersion);
+  EXPECT_EQ(stats.pairs_cached, 6);
+}
+
+TEST_F(PairCacheTest, PairOptionsThatChangeHypothesesMissTheCache) {
+  PairCacheStats first, other_overlap, other_theta;
+  Cached(3, first);
+  options_.min_overlap_cells += 1;  // MergeFleet copies it into the pair options
+  Cached(3, other_overlap);
+  EXPECT_EQ(other_overlap.pairs_cached, 0);
+  EXPECT_EQ(other_overlap.pairs_computed, 3);
+  options_.pair.hypotheses.hough.n_theta = 360;
+  Cached(3, other_theta);
+  EXPECT_EQ(other_theta.pairs_cached, 0);
+  // Options that only change the fleet's decisions (not a pair's hypotheses) keep the pairs.
+  options_.omega_threshold = 0.95;
+  options_.threads = 1;
+  PairCacheStats decisions;
+  Cached(3, decisions);
+  EXPECT_EQ(decisions.pairs_cached, 3);
+}
+
+TEST_F(PairCacheTest, TheCacheIsReleasedOnceThePairsAreDone) {
+  PairCache cache(dir_, kVersion, {});
+  const FleetResult result = MergeFleet(FirstMaps(fleet_, 3), 0, options_, {}, &cache);
+  // Still alive, but closed: another job gets the folder at once (no wait), with its pairs.
+  PairCache other(dir_, kVersion, {});
+  EXPECT_TRUE(other.FindPair(PairOptionsDigest(
+                                 [&] {
+                                   PairOptions o = options_.pair;
+                                   o.hypotheses.min_overlap_cells = options_.min_overlap_cells;
+                                   return o;
+                                 }(),
+                                 kVersion),
+                             MapDigest(result.maps[0]), MapDigest(result.maps[1])));
+  EXPECT_THROW(cache.FindPair({}, {}, {}), Error);
+}
+
+TEST(MapDigest, ChangesWithCellsResolutionAndOrigin) {
+  OccupancyGrid grid(GridGeometry(0.05, {40, 30}, Pose2(1.0, 2.0, 0.0)), CellState::kFree);
+  const Sha256Digest digest = MapDigest(grid);
+  EXPECT_EQ(MapDigest(grid), digest);
+  OccupancyGrid cell = grid;
+  cell.mutable_cells()(3, 7) = static_cast<std::uint8_t>(CellState::kOccupied);
+  EXPECT_NE(MapDigest(cell), digest);
+  EXPECT_NE(
+      MapDigest(OccupancyGrid(GridGeometry(0.1, {40, 30}, Pose2(1.0, 2.0, 0.0)), CellState::kFree)),
+      digest);
+  EXPECT_NE(MapDigest(OccupancyGrid(GridGeometry(0.05, {40, 30}, Pose2(1.0, 2.05, 0.0)),
+                                    CellState::kFree)),
+            digest);
+  // The same cells transposed into another shape.
+  EXPECT_NE(MapDigest(OccupancyGrid(GridGeometry(0.05, {30, 40}, Pose2(1.0, 2.0, 0.0)),
+                                    CellState::kFree)),
+            digest);
+}
+
+TEST(PairOutcomePayload, RoundTripsBitForBitAndRefusesOtherBytes) {
+  PairOutcome outcome;
+  outcome.hypotheses.push_back({Pose2(1.25, -3.5, M_PI), 0.97, 12345, 0.91, 17.5});
+  outcome.hypotheses.push_back({Pose2(0.1, 0.2, -0.3), 0.5, 99, 0.25, -2.0});
+  outcome.overlap_cells = 12345;
+  outcome.wall_agreement = 0.91;
+  outcome.margin_nats = std::numeric_limits<double>::infinity();
+  outcome.ambiguous = true;
+  const std::string payload = PairOutcomePayload(outcome);
+  const std::optional<PairOutcome> parsed = ParsePairOutcome(payload);
+  ASSERT_TRUE(parsed);
+  ASSERT_EQ(parsed->hypotheses.size(), 2u);
+  ExpectSamePose(parsed->hypotheses[0].T_a_b, outcome.hypotheses[0].T_a_b, "first");
+  EXPECT_EQ(parsed->hypotheses[1].overlap_cells, 99);
+  EXPECT_EQ(parsed->margin_nats, outcome.margin_nats);
+  EXPECT_TRUE(parsed->ambiguous);
+  EXPECT_EQ(PairOutcomePayload(*parsed), payload);
+  EXPECT_FALSE(ParsePairOutcome(payload.substr(0, payload.size() - 1)));
+  EXPECT_FALSE(ParsePairOutcome(payload + "x"));
+  EXPECT_FALSE(ParsePairOutcome(""));
+  std::string huge_count = payload;
+  huge_count[4] = '\xff';
+  EXPECT_FALSE(ParsePairOutcome(huge_count));
+}
+
+}  // namespace
+}  // namespace fleetmerge
