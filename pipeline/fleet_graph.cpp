@@ -48,7 +48,6 @@ std::vector<int> Components(int map_count, const std::vector<PairOutcome>& pairs
 
 namespace {
 
-bool IsFixed(const FixedPoses& fixed, int m) { return !fixed.empty() && fixed[m].has_value(); }
 bool HasPrior(const PosePriors& priors, int m) { return !priors.empty() && priors[m].has_value(); }
 
 // The maps whose poses are known in the site frame (fixed maps and maps with a prior).

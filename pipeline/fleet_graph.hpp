@@ -44,6 +44,7 @@ std::vector<int> Components(int map_count, const std::vector<PairOutcome>& pairs
 // Per map, its given pose in the merged frame if it is a fixed (base) map, else nullopt; empty
 // when no map is fixed.
 using FixedPoses = std::vector<std::optional<Pose2>>;
+inline bool IsFixed(const FixedPoses& fixed, int m) { return !fixed.empty() && fixed[m]; }
 
 // Marks pairs accepted (in `pairs`, with edge_hypothesis and notes) and returns the poses.
 // `reference` is the job's reference map; other components use their first map.

@@ -23,8 +23,6 @@ std::optional<PosePrior> KnownPose(const FixedPoses& fixed, const PosePriors& pr
   return std::nullopt;
 }
 
-bool IsFixed(const FixedPoses& fixed, int m) { return !fixed.empty() && fixed[m].has_value(); }
-
 // "initial_pose of map 3" or "fixed pose of map 1" (maps numbered in job order, from 1).
 std::string KnownPoseName(const FixedPoses& fixed, int m) {
   return (IsFixed(fixed, m) ? "fixed pose of map " : "initial_pose of map ") +
