@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "io/atomic_file.hpp"
+#include "io/raw_bytes.hpp"
 
 namespace fleetmerge {
 namespace fs = std::filesystem;
@@ -24,35 +25,6 @@ constexpr const char* kCacheDirTag =
     "# This file marks a fleetmerge cache folder (fleetmerge merge --cache): re-runs reuse its\n"
     "# entries; it may be deleted at any time.\n";
 
-template <typename T>
-void Append(std::string& bytes, const T& value) {
-  bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
-}
-
-// Reads the entry's fields in order; any read past the end fails the whole entry.
-class Reader {
- public:
-  explicit Reader(const std::string& bytes) : bytes_(bytes) {}
-  template <typename T>
-  bool Read(T& value) {
-    if (bytes_.size() - offset_ < sizeof value) return false;
-    std::memcpy(&value, bytes_.data() + offset_, sizeof value);
-    offset_ += sizeof value;
-    return true;
-  }
-  bool ReadBytes(std::size_t size, std::string& out) {
-    if (bytes_.size() - offset_ < size) return false;
-    out.assign(bytes_, offset_, size);
-    offset_ += size;
-    return true;
-  }
-  std::size_t offset() const { return offset_; }
-
- private:
-  const std::string& bytes_;
-  std::size_t offset_ = 0;
-};
-
 // The payload of `bytes` when it is a sound entry for `key` and `version`.
 std::optional<std::string> ParseEntry(const std::string& bytes, const Sha256Digest& key,
                                       const std::string& version) {
@@ -65,7 +37,7 @@ std::optional<std::string> ParseEntry(const std::string& bytes, const Sha256Dige
   if (std::memcmp(checksum.data(), bytes.data() + body_size, kChecksumSize) != 0) {
     return std::nullopt;  // truncated, corrupt, or not an entry at all
   }
-  Reader reader(bytes);
+  RawBytesReader reader(bytes);
   char magic[sizeof kMagic];
   std::uint32_t format = 0, byte_order = 0, version_size = 0;
   std::string entry_version;
@@ -102,14 +74,14 @@ bool IsEntryTempName(const std::string& name) {
 std::string CacheEntryBytes(const Sha256Digest& key, const std::string& version,
                             const std::string& payload) {
   std::string bytes(kMagic, sizeof kMagic);
-  Append(bytes, CacheFolder::kFormatVersion);
-  Append(bytes, kByteOrderMark);
-  Append(bytes, static_cast<std::uint32_t>(version.size()));
+  AppendRaw(bytes, CacheFolder::kFormatVersion);
+  AppendRaw(bytes, kByteOrderMark);
+  AppendRaw(bytes, static_cast<std::uint32_t>(version.size()));
   bytes += version;
-  Append(bytes, key);
-  Append(bytes, static_cast<std::uint64_t>(payload.size()));
+  AppendRaw(bytes, key);
+  AppendRaw(bytes, static_cast<std::uint64_t>(payload.size()));
   bytes += payload;
-  Append(bytes, Sha256Of(bytes));
+  AppendRaw(bytes, Sha256Of(bytes));
   return bytes;
 }
 

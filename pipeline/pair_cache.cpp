@@ -3,14 +3,10 @@
 #include <cstring>
 
 #include "core/error.hpp"
+#include "io/raw_bytes.hpp"
 
 namespace fleetmerge {
 namespace {
-
-template <typename T>
-void Append(std::string& bytes, const T& value) {
-  bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
-}
 
 // A named field of the options' key: the names keep two layouts that happen to have the same
 // bytes apart.
@@ -18,7 +14,7 @@ template <typename T>
 void AppendField(std::string& bytes, const char* name, const T& value) {
   bytes += name;
   bytes += '=';
-  Append(bytes, value);
+  AppendRaw(bytes, value);
 }
 
 void AppendSampling(std::string& bytes, const char* name, const SamplingOptions& s) {
@@ -35,23 +31,6 @@ void AppendAlignment(std::string& bytes, const char* name, const LocalAlignmentO
   AppendField(bytes, ".max_iterations", a.max_iterations);
   AppendField(bytes, ".loss_scale_cells", a.loss_scale_cells);
 }
-
-class PayloadReader {
- public:
-  explicit PayloadReader(const std::string& bytes) : bytes_(bytes) {}
-  template <typename T>
-  bool Read(T& value) {
-    if (bytes_.size() - offset_ < sizeof value) return false;
-    std::memcpy(&value, bytes_.data() + offset_, sizeof value);
-    offset_ += sizeof value;
-    return true;
-  }
-  bool AtEnd() const { return offset_ == bytes_.size(); }
-
- private:
-  const std::string& bytes_;
-  std::size_t offset_ = 0;
-};
 
 constexpr std::uint32_t kPairPayloadTag = 0x70616972;  // "pair"
 
@@ -103,26 +82,26 @@ Sha256Digest PairOptionsDigest(const PairOptions& o, const std::string& version)
 
 std::string PairOutcomePayload(const PairOutcome& outcome) {
   std::string bytes;
-  Append(bytes, kPairPayloadTag);
-  Append(bytes, static_cast<std::uint32_t>(outcome.hypotheses.size()));
+  AppendRaw(bytes, kPairPayloadTag);
+  AppendRaw(bytes, static_cast<std::uint32_t>(outcome.hypotheses.size()));
   for (const PairHypothesis& h : outcome.hypotheses) {
-    Append(bytes, h.T_a_b.x_m());
-    Append(bytes, h.T_a_b.y_m());
-    Append(bytes, h.T_a_b.yaw_rad());
-    Append(bytes, h.omega);
-    Append(bytes, h.overlap_cells);
-    Append(bytes, h.wall_agreement);
-    Append(bytes, h.evidence_nats);
+    AppendRaw(bytes, h.T_a_b.x_m());
+    AppendRaw(bytes, h.T_a_b.y_m());
+    AppendRaw(bytes, h.T_a_b.yaw_rad());
+    AppendRaw(bytes, h.omega);
+    AppendRaw(bytes, h.overlap_cells);
+    AppendRaw(bytes, h.wall_agreement);
+    AppendRaw(bytes, h.evidence_nats);
   }
-  Append(bytes, outcome.overlap_cells);
-  Append(bytes, outcome.wall_agreement);
-  Append(bytes, outcome.margin_nats);
-  Append(bytes, static_cast<std::uint8_t>(outcome.ambiguous));
+  AppendRaw(bytes, outcome.overlap_cells);
+  AppendRaw(bytes, outcome.wall_agreement);
+  AppendRaw(bytes, outcome.margin_nats);
+  AppendRaw(bytes, static_cast<std::uint8_t>(outcome.ambiguous));
   return bytes;
 }
 
 std::optional<PairOutcome> ParsePairOutcome(const std::string& payload) {
-  PayloadReader reader(payload);
+  RawBytesReader reader(payload);
   std::uint32_t tag = 0, count = 0;
   if (!reader.Read(tag) || tag != kPairPayloadTag || !reader.Read(count)) return std::nullopt;
   // Each hypothesis takes 56 bytes: a count beyond the payload's size is garbage.
