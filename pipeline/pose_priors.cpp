@@ -126,9 +126,15 @@ void DropHypothesesAgainstPriors(std::vector<PairOutcome>& pairs, const FixedPos
     if (!front_two_kept) {
       // The priors decided between the maps' look-alike poses: the pair is no longer a coin toss.
       pair.ambiguous = false;
-      pair.margin_nats = pair.hypotheses.size() >= 2
-                             ? pair.hypotheses[0].evidence_nats - pair.hypotheses[1].evidence_nats
-                             : std::numeric_limits<double>::infinity();
+      // The evidence of the two now in front, when the ranking measured both (core/
+      // pose_evidence.hpp measures only the hypotheses it compares, NaN for the others; those
+      // were ordered by omega, so no runner-up is left that the evidence ties with the best).
+      const double margin_nats =
+          pair.hypotheses.size() >= 2
+              ? pair.hypotheses[0].evidence_nats - pair.hypotheses[1].evidence_nats
+              : std::numeric_limits<double>::infinity();
+      pair.margin_nats =
+          std::isnan(margin_nats) ? std::numeric_limits<double>::infinity() : margin_nats;
     }
     pair.note = note.str();
   }
