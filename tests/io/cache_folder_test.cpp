@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "core/error.hpp"
+#include "tests/support/error_of.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/shared_data.hpp"
 
@@ -23,14 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 namespace ft = fleetmerge::testing;
 
-std::string ErrorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using fleetmerge::testing::ErrorOf;
 
 bool Contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;

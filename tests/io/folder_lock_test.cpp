@@ -18,6 +18,7 @@
 
 #include "core/error.hpp"
 #include "io/result_folder.hpp"
+#include "tests/support/error_of.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/shared_data.hpp"
 
@@ -28,14 +29,7 @@ namespace fs = std::filesystem;
 namespace ft = fleetmerge::testing;
 using Clock = std::chrono::steady_clock;
 
-std::string ErrorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using fleetmerge::testing::ErrorOf;
 
 std::string HostName() {
   char name[256] = {};

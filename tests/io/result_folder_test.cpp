@@ -12,6 +12,7 @@
 
 #include "core/error.hpp"
 #include "tests/io/io_test_util.hpp"
+#include "tests/support/error_of.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {
@@ -28,14 +29,7 @@ void PublishSet(const fs::path& out, const std::string& job, const std::string& 
   folder.Publish({name});
 }
 
-std::string ErrorOf(const std::function<void()>& fn) {
-  try {
-    fn();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
+using fleetmerge::testing::ErrorOf;
 
 std::vector<std::string> Entries(const fs::path& folder) {
   std::vector<std::string> names;
