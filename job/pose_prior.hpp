@@ -25,5 +25,6 @@ struct PosePrior {
 
 // Per map, its prior or nullopt; empty when no map has one.
 using PosePriors = std::vector<std::optional<PosePrior>>;
+inline bool HasPrior(const PosePriors& priors, int m) { return !priors.empty() && priors[m]; }
 
 }  // namespace fleetmerge

@@ -48,8 +48,6 @@ std::vector<int> Components(int map_count, const std::vector<PairOutcome>& pairs
 
 namespace {
 
-bool HasPrior(const PosePriors& priors, int m) { return !priors.empty() && priors[m].has_value(); }
-
 // The maps whose poses are known in the site frame (fixed maps and maps with a prior).
 struct Known {
   const FixedPoses& fixed;

@@ -18,8 +18,8 @@ bool Finite(const Pose2& T) {
 
 // A map's known pose: its prior, or a fixed map's given pose with sigma 0.
 std::optional<PosePrior> KnownPose(const FixedPoses& fixed, const PosePriors& priors, int m) {
-  if (!fixed.empty() && fixed[m]) return PosePrior{*fixed[m], 0.0, 0.0};
-  if (!priors.empty() && priors[m]) return priors[m];
+  if (IsFixed(fixed, m)) return PosePrior{*fixed[m], 0.0, 0.0};
+  if (HasPrior(priors, m)) return priors[m];
   return std::nullopt;
 }
 
