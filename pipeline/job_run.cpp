@@ -213,10 +213,7 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     }
     outcome.result = MergeFleet(grids, reference, fixed, priors, job.options, options.progress,
                                 cache ? &*cache : nullptr);
-    if (cache) {
-      cache->Close();  // done by MergeFleet after the pairs already; again does nothing
-      outcome.cache = cache->stats();
-    }
+    if (cache) outcome.cache = cache->stats();  // MergeFleet closed it after the pairs
   }
   const FleetResult& result = outcome.result;
 
