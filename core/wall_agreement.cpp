@@ -79,7 +79,10 @@ double SymmetricWallAgreement(const OccupancyGrid& a, const OccupancyGrid& b,
 }
 
 MapWalls::MapWalls(const OccupancyGrid& grid)
-    : grid(grid), centres(OccupiedCellCenters(grid)), near_walls(NearWallMask(grid)) {}
+    : grid(grid),
+      centres(OccupiedCellCenters(grid)),
+      near_walls(NearWallMask(grid)),
+      known_spans(KnownRowSpans(grid)) {}
 
 double SymmetricWallAgreement(const MapWalls& a, const MapWalls& b, const Pose2& T_ga_gb) {
   return std::min(WallAgreement(a.grid, a.near_walls, b.centres, T_ga_gb),

@@ -11,6 +11,7 @@
 #include <opencv2/core.hpp>
 #include <vector>
 
+#include "core/acceptance_index.hpp"
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
 
@@ -53,12 +54,15 @@ double WallAgreement(const OccupancyGrid& a, const cv::Mat1b& a_near_walls,
 // min(WallAgreement(a, b, T), WallAgreement(b, a, T^-1)): both maps' walls must agree.
 double SymmetricWallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb);
 
-// One map's side of the wall agreement, computed once per map where it is judged in many pairs.
+// One map's side of the wall agreement, computed once per map where it is judged in many pairs,
+// with its known cells' row spans: the overlap counted before the walls are judged
+// (CountAgreement's fast path, the same counts).
 struct MapWalls {
   explicit MapWalls(const OccupancyGrid& grid);  // keeps a reference to `grid`
   const OccupancyGrid& grid;
   std::vector<Eigen::Vector2f> centres;  // OccupiedCellCenters(grid)
   cv::Mat1b near_walls;                  // NearWallMask(grid)
+  RowSpans known_spans;                  // KnownRowSpans(grid)
 };
 
 // SymmetricWallAgreement of two maps' precomputed walls: the same value.

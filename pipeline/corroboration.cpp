@@ -6,8 +6,8 @@
 #include "core/acceptance_index.hpp"
 #include "core/error.hpp"
 #include "core/hypothesis_generator.hpp"
-#include "core/wall_agreement.hpp"
 #include "core/parallel.hpp"
+#include "core/wall_agreement.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -43,7 +43,7 @@ std::vector<PairVerdict> JudgeSolvedPairs(const std::vector<OccupancyGrid>& maps
     if (graph.component_of[a] != graph.component_of[b]) return;
     const Pose2 T_a_b = graph.T_component_map[a].inverse() * graph.T_component_map[b];
     const Pose2 T_ga_gb = CellPoseFromMapPose(maps[a].geometry(), maps[b].geometry(), T_a_b);
-    const Agreement overlap = CountAgreement(maps[a], maps[b], T_ga_gb, 2);
+    const Agreement overlap = CountAgreement(maps[a], maps[b], T_ga_gb, 2, &walls[b].known_spans);
     // Stride 2 visits a quarter of b's cells.
     if (4 * (overlap.agree + overlap.disagree) < min_overlap_cells) return;
     // A pair search can miss a true pose where the maps share little; the walls at the solved

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -214,9 +215,13 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   AcceptByThreshold(result.pairs, options);
   FleetGraph graph = SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference,
                                      options.pose_graph, fixed, priors);
-  std::vector<MapWalls> walls;  // made once: every round judges the pairs again
-  walls.reserve(result.maps.size());
-  for (const OccupancyGrid& map : result.maps) walls.emplace_back(map);
+  // Made once, in parallel: every round judges the pairs again.
+  std::vector<std::optional<MapWalls>> made(result.maps.size());
+  ParallelFor(made.size(), options.threads,
+              [&](std::size_t m) { made[m].emplace(result.maps[m]); });
+  std::vector<MapWalls> walls;
+  walls.reserve(made.size());
+  for (auto& w : made) walls.push_back(std::move(*w));
   // Each round rejects at least one edge, so this ends.
   for (std::size_t round = 0; round <= result.pairs.size(); ++round) {
     if (const auto weak = WeakestBridge(static_cast<int>(maps.size()), result.pairs,
