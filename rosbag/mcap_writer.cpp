@@ -1,7 +1,8 @@
 #include "rosbag/mcap_writer.hpp"
 
+#include <zlib.h>
+
 #include <algorithm>
-#include <array>
 #include <limits>
 
 #include "core/error.hpp"
@@ -30,28 +31,13 @@ std::string StringMap(const std::map<std::string, std::string>& entries) {
   return out.bytes();
 }
 
-const std::array<std::uint32_t, 256>& CrcTable() {
-  static const std::array<std::uint32_t, 256> table = [] {
-    std::array<std::uint32_t, 256> t{};
-    for (std::uint32_t n = 0; n < 256; ++n) {
-      std::uint32_t c = n;
-      for (int k = 0; k < 8; ++k) c = (c & 1u) ? 0xEDB88320u ^ (c >> 1) : c >> 1;
-      t[n] = c;
-    }
-    return t;
-  }();
-  return table;
-}
-
 }  // namespace
 
+// zlib's crc32 is the same CRC (MCAP's spec names it) and ~10x faster than a byte table: the
+// merged bag's two checksums ran over the whole map twice.
 std::uint32_t Crc32(const std::string& bytes, std::size_t begin, std::size_t end) {
-  const auto& table = CrcTable();
-  std::uint32_t c = 0xFFFFFFFFu;
-  for (std::size_t i = begin; i < end; ++i) {
-    c = table[(c ^ static_cast<unsigned char>(bytes[i])) & 0xFFu] ^ (c >> 8);
-  }
-  return c ^ 0xFFFFFFFFu;
+  const auto* data = reinterpret_cast<const Bytef*>(bytes.data() + begin);
+  return static_cast<std::uint32_t>(crc32_z(crc32_z(0L, Z_NULL, 0), data, end - begin));
 }
 
 McapWriter::McapWriter(std::string profile, std::string library)
