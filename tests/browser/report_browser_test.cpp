@@ -9,6 +9,10 @@
 // page's own view matrix, must land on a pixel of its map's wall colour in the screenshot (and
 // under a wrong pose most must not: the check can fail). The same for a `pair --out` page.
 //
+// The example job configs/site_with_priors.yaml is merged and opened too: its run4 is placed by
+// its known start pose alone, and the merged map's viewer must draw its node with the dashed
+// ring (and only its node), where report.json's pose puts run4's known cells.
+//
 // Skips with a message when Chromium or Node is not installed (scripts/install_deps.sh
 // installs both) or the shared maps are absent. With FLEETMERGE_UPDATE_DOCS_SCREENSHOT=1 it
 // also writes the README's screenshot, docs/images/report.png.
@@ -508,6 +512,195 @@ TEST(PairReportInBrowser, PairOutPageOpensAndDrawsTheBestOverlay) {
             json({"robotis_corridor_run1", "robotis_corridor_run3"}));
   ExpectOverlayWhereTheHypothesisPutsIt(browser.result.at("clicks").at(0), pair, 0, dir / "shots",
                                         LoadMap(a), LoadMap(b));
+}
+
+// ---- The ring of a map placed by its prior: the page draws it around the map's node (the
+// centre of its known cells' box, carried into the merged frame by the map's pose) as a dashed
+// circle of radius 11 CSS pixels, 2 wide, in #111, with the map's label above and right.
+const Rgb kRingColour(17, 17, 17);
+
+// Centre of the known (not unknown) cells' box of `grid`, in its map frame.
+Eigen::Vector2d KnownBoxCentre(const OccupancyGrid& grid) {
+  int i0 = grid.width(), j0 = grid.height(), i1 = -1, j1 = -1;
+  for (int j = 0; j < grid.height(); ++j) {
+    for (int i = 0; i < grid.width(); ++i) {
+      if (grid.cells()(j, i) == static_cast<std::uint8_t>(CellState::kUnknown)) continue;
+      i0 = std::min(i0, i), i1 = std::max(i1, i + 1), j0 = std::min(j0, j),
+      j1 = std::max(j1, j + 1);
+    }
+  }
+  const double r = grid.geometry().resolution_m();
+  return grid.geometry().T_map_grid() * Eigen::Vector2d((i0 + i1) * r / 2, (j0 + j1) * r / 2);
+}
+
+// Where a point of the merged frame lands in a screenshot of the merged map's viewer: merged
+// frame -> preview pixel (column, row from the top, as the preview image is laid out) -> the
+// viewer's matrix [a, b, c, d, e, f] (preview pixel -> device pixel of the canvas).
+cv::Point2d OnScreen(const Eigen::Vector2d& p_merged, const OccupancyGrid& merged,
+                     const json& view) {
+  const GridGeometry& g = merged.geometry();
+  const Eigen::Vector2d p_grid = g.T_map_grid().inverse() * p_merged;
+  const double u = p_grid.x() / g.resolution_m(), v = g.height() - p_grid.y() / g.resolution_m();
+  const double m[6] = {view[0], view[1], view[2], view[3], view[4], view[5]};
+  return {m[0] * u + m[2] * v + m[4], m[1] * u + m[3] * v + m[5]};
+}
+
+// The share of directions around `centre` in which a ring-coloured pixel lies within 3 device
+// pixels of `radius_px`. The quarter above and right of the centre is not looked at: the map's
+// label (the same #111) is drawn there. Every sampled pixel must be inside the screenshot.
+Hits RingCoverage(const cv::Mat3b& shot, const cv::Point2d& centre, double radius_px) {
+  Hits hits;
+  constexpr int kDirections = 96;
+  for (int k = 0; k < kDirections; ++k) {
+    const double angle = 2 * M_PI * (k + 0.5) / kDirections;
+    const double dx = std::cos(angle), dy = std::sin(angle);  // screen y points down
+    if (dx > 0 && dy < 0) continue;
+    ++hits.considered;
+    bool found = false;
+    for (double r = radius_px - 3; r <= radius_px + 3 && !found; r += 0.5) {
+      const int x = static_cast<int>(std::floor(centre.x + r * dx));
+      const int y = static_cast<int>(std::floor(centre.y + r * dy));
+      if (x < 0 || y < 0 || x >= shot.cols || y >= shot.rows) return Hits{};  // not on screen
+      found = Near(shot(y, x), kRingColour, 14);
+    }
+    hits.hits += found;
+  }
+  return hits;
+}
+
+// configs/site_with_priors.yaml, the example job, with its maps' paths made absolute and its
+// output in `out`.
+std::string SiteWithPriorsJob(const fs::path& out) {
+  std::string yaml =
+      testing::ReadFile(fs::path(FLEETMERGE_SOURCE_DIR) / "configs" / "site_with_priors.yaml");
+  const std::string relative = "../../shared/data/maps/";
+  const std::string absolute = testing::SharedMapsDir()->string() + "/";
+  int replaced = 0;
+  std::size_t at = yaml.find(relative);
+  while (at != std::string::npos) {
+    yaml.replace(at, relative.size(), absolute);
+    ++replaced;
+    at = yaml.find(relative, at + absolute.size());
+  }
+  const std::size_t output = yaml.find("\noutput:");
+  if (replaced != 4 || output == std::string::npos) {
+    ADD_FAILURE() << "configs/site_with_priors.yaml: expected 4 maps under " << relative
+                  << " and an output: line; found " << replaced << " maps";
+    return "";
+  }
+  return yaml.substr(0, output) + "\noutput: " + out.string() + "\n";
+}
+
+// The example job of a site map and three robots with known start poses: run4 shares too little
+// with the others for any pair, so its prior places it, and the merged map's viewer marks its
+// node (and only its node) with a dashed ring.
+TEST(PriorPlacedMapInBrowser, IsListedAndRingedWhereItsPosePutsIt) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const fs::path dir = testing::MakeTempDir("prior_report_browser");
+  const fs::path out = dir / "out", shots = dir / "shots";
+  const std::string job = SiteWithPriorsJob(out);
+  ASSERT_FALSE(job.empty());
+  testing::WriteFile(dir / "site_with_priors.yaml", job);
+  const testing::CommandResult merge =
+      testing::Fleetmerge("merge --quiet " + ShellQuote(dir / "site_with_priors.yaml"));
+  ASSERT_EQ(merge.exit_code, 0) << merge.both();
+  const json report = json::parse(testing::ReadFile(out / "report.json"));
+
+  // report.json: run4 alone is placed by its prior, in a merged component with the others.
+  const json& maps = report.at("maps");
+  ASSERT_EQ(maps.size(), 4u) << maps.dump();
+  int run4 = -1;
+  std::vector<int> placed_by_pairs;
+  for (int m = 0; m < static_cast<int>(maps.size()); ++m) {
+    const std::string name = maps[m].at("name"), placed_by = maps[m].at("placed_by");
+    EXPECT_EQ(placed_by == "prior", name == "run4") << name << " placed by " << placed_by;
+    if (name == "run4") run4 = m;
+    if (placed_by == "pairs") placed_by_pairs.push_back(m);
+  }
+  ASSERT_GE(run4, 0);
+  // Placed by its prior: exactly where its initial_pose says.
+  EXPECT_EQ(maps[run4].at("pose"), maps[run4].at("initial_pose"));
+  ASSERT_EQ(placed_by_pairs.size(), 2u) << "run2 and run3 pair with the site";
+  const int component = maps[run4].at("component");
+  json comp;
+  for (const json& c : report.at("components")) {
+    if (c.at("id") == component) comp = c;
+  }
+  ASSERT_TRUE(comp.contains("merged_map")) << report.at("components").dump();
+  for (const json& m : maps) EXPECT_EQ(m.at("component"), component) << m.dump();
+
+  const std::optional<fs::path> chromium = Chromium();
+  if (!chromium || !FindProgram({"node"})) {
+    GTEST_SKIP() << "SKIPPED: no browser test: Chromium or node not found; "
+                    "scripts/install_deps.sh installs both";
+  }
+  const DriverRun browser = Drive(*chromium, out, shots, {});
+  std::cout << "[ browser  ] site_with_priors report.html opened and checked in " << browser.wall_s
+            << " s (Chromium start to exit)\n";
+  ASSERT_TRUE(browser.error.empty()) << browser.error;
+  ExpectNoConsoleErrorAndNothingFetchedOutside(browser.result, out);
+
+  // The merged map's list says "(placed by prior)" for run4 and for no other map, and run4 is
+  // not among the unmerged maps.
+  const json& dom = browser.result.at("dom");
+  const json* listed = nullptr;
+  for (const json& c : dom.at("components")) {
+    if (c.at("id") == std::to_string(component)) listed = &c;
+  }
+  ASSERT_NE(listed, nullptr) << dom.at("components").dump();
+  ASSERT_EQ(listed->at("legend").size(), maps.size());
+  for (std::size_t k = 0; k < maps.size(); ++k) {
+    const std::string name = listed->at("legend")[k], text = listed->at("legend_text")[k];
+    EXPECT_EQ(text.find("(placed by prior)") != std::string::npos, name == "run4") << text;
+  }
+  EXPECT_TRUE(dom.at("unmerged").empty()) << dom.at("unmerged").dump();
+
+  // The viewer as loaded: the dashed ring around run4's node, where report.json's pose carries
+  // the centre of run4's known cells; none around the maps their pairs place; none 1.5 m away.
+  const json* seen = nullptr;
+  for (const json& v : browser.result.at("component_views")) {
+    if (v.at("id") == std::to_string(component)) seen = &v;
+  }
+  ASSERT_NE(seen, nullptr) << browser.result.at("component_views").dump();
+  ASSERT_TRUE(seen->at("view").is_array()) << "the merged map's viewer drew nothing";
+  const cv::Mat3b shot = cv::imread((shots / seen->at("screenshot").get<std::string>()).string());
+  ASSERT_FALSE(shot.empty());
+  const OccupancyGrid merged = LoadMap(out / comp.at("merged_map").get<std::string>()).grid;
+  const double ring_px = 11.0 * browser.result.at("device_scale").get<double>();
+  const auto node_of = [&](int m) {
+    const LoadedMap input = LoadMap(maps[m].at("source").get<std::string>());
+    return PoseOf(maps[m].at("pose")) * KnownBoxCentre(input.grid);
+  };
+  const Eigen::Vector2d run4_node = node_of(run4);
+  const Hits ring = RingCoverage(shot, OnScreen(run4_node, merged, seen->at("view")), ring_px);
+  std::cout << "[ ring     ] run4's ring: " << ring.hits << " of " << ring.considered
+            << " directions\n";
+  ASSERT_GT(ring.considered, 0) << "run4's node is not on screen";
+  // Dashed (4 on, 3 off): about 4/7 of the directions, neither none nor all.
+  EXPECT_GE(ring.fraction(), 0.4) << ring.hits << " of " << ring.considered;
+  EXPECT_LE(ring.fraction(), 0.8) << "a solid ring? " << ring.hits << " of " << ring.considered;
+  for (int m : placed_by_pairs) {
+    const Hits none = RingCoverage(shot, OnScreen(node_of(m), merged, seen->at("view")), ring_px);
+    ASSERT_GT(none.considered, 0) << maps[m].at("name") << "'s node is not on screen";
+    std::cout << "[ ring     ] around " << maps[m].at("name").get<std::string>() << ": "
+              << none.hits << " of " << none.considered << " directions\n";
+    EXPECT_LT(none.fraction(), 0.1)
+        << "a ring around " << maps[m].at("name") << ": " << none.hits << " of " << none.considered;
+  }
+  // 1.5 m is about five ring radii here. Not straight right: the label runs there.
+  for (const Eigen::Vector2d& offset_m : {Eigen::Vector2d(-1.5, 0), Eigen::Vector2d(0, 1.5),
+                                          Eigen::Vector2d(0, -1.5), Eigen::Vector2d(1.5, -1.5)}) {
+    const Hits none =
+        RingCoverage(shot, OnScreen(run4_node + offset_m, merged, seen->at("view")), ring_px);
+    ASSERT_GT(none.considered, 0) << "(" << offset_m.x() << ", " << offset_m.y() << ") m from "
+                                  << "run4's node is off screen";
+    std::cout << "[ ring     ] (" << offset_m.x() << ", " << offset_m.y()
+              << ") m from run4's node: " << none.hits << " of " << none.considered
+              << " directions\n";
+    EXPECT_LT(none.fraction(), 0.1)
+        << "ring pixels (" << offset_m.x() << ", " << offset_m.y()
+        << ") m from run4's node: " << none.hits << " of " << none.considered;
+  }
 }
 
 // An octree job's page adds each octree's floor plan with its floor height and z offset. The

@@ -9,6 +9,9 @@
 //   console: [{level, text}]        console messages, uncaught exceptions, browser log entries
 //   requests: [url]                 every request the page made
 //   dom: {...}                      maps, pairs and decisions as the page lists them
+//   component_views: [{id, view, rect, screenshot}]  per merged map's viewer as loaded: its
+//                                   preview pixel -> device-pixel matrix (view), its canvas's box
+//                                   and a screenshot of it (device pixels, file in OUT_DIR)
 //   clicks: [{a, b, state, pair, hypothesis, view, rect, screenshot}]  per clicked table row:
 //                                   the overlay viewer's state after the click, its world ->
 //                                   device-pixel matrix (view), its canvas's box in CSS pixels
@@ -182,6 +185,25 @@ listeners.push((m) => {
   await new Promise((r) => setTimeout(r, 100));
   const pageShot = await screenshot("page.png");
 
+  // Each merged map's viewer as drawn at load (fitted, pose graph on): its preview pixel ->
+  // device-pixel matrix and a screenshot of its canvas.
+  const componentViews = [];
+  for (const id of await evaluate(
+    "[...document.querySelectorAll('.component')].map(c => c.dataset.component)")) {
+    const selector = `.component[data-component="${id}"] .viewer`;
+    await evaluate(`document.querySelector(${JSON.stringify(selector)})
+      .scrollIntoView({block: "center"})`);
+    await new Promise((r) => setTimeout(r, 50));
+    const info = await evaluate(`(() => {
+      const v = document.querySelector(${JSON.stringify(selector)});
+      const r = v.querySelector('canvas').getBoundingClientRect();
+      return { id: ${JSON.stringify(id)}, view: JSON.parse(v.dataset.view || "null"),
+        rect: {x: r.x + window.scrollX, y: r.y + window.scrollY, width: r.width, height: r.height}
+      }; })()`);
+    info.screenshot = await screenshot("component_" + id + ".png", info.rect);
+    componentViews.push(info);
+  }
+
   // Lazily drawn overlays of unmerged maps: scroll each into view.
   await evaluate(`(async () => {
     for (const v of document.querySelectorAll('[data-role=best-candidate]')) {
@@ -211,6 +233,7 @@ listeners.push((m) => {
       components: [...document.querySelectorAll('.component')].map(c => ({
         id: c.dataset.component,
         legend: [...c.querySelectorAll('.legend li[data-map]')].map(l => l.dataset.map),
+        legend_text: [...c.querySelectorAll('.legend li[data-map]')].map(l => l.textContent),
         canvas: [c.querySelector('canvas').width, c.querySelector('canvas').height]})),
       unmerged: [...document.querySelectorAll('#unmerged-list .card')].map(c => ({
         map: c.dataset.map,
@@ -285,8 +308,8 @@ listeners.push((m) => {
 
   finished = true;
   clearTimeout(deadline);
-  process.stdout.write(JSON.stringify({ console: consoleMessages, requests, dom, clicks, second,
-    sorted,
+  process.stdout.write(JSON.stringify({ console: consoleMessages, requests, dom,
+    component_views: componentViews, clicks, second, sorted,
     page_screenshot: pageShot, pairs_screenshot: pairsShot, device_scale: DEVICE_SCALE,
     timing_ms: { load: loadMs, total: Date.now() - started } }) + "\n");
   finish(0);
