@@ -174,54 +174,77 @@ bool FixWorstEdge(int map_count, std::vector<PairOutcome>& pairs, int reference,
   return true;
 }
 
-// Whether T_a_b agrees with the path a -> c -> b of two other accepted edges (tolerances doubled:
-// three pairwise errors add up around a triangle).
-bool TriangleAgrees(const Pose2& T_a_b, const Pose2& T_a_c, const Pose2& T_c_b,
-                    const PoseGraphOptions& options) {
-  const Pose2 delta = T_a_b.inverse() * (T_a_c * T_c_b);
-  return std::abs(delta.yaw_rad()) <= 2.0 * options.max_edge_yaw_error_rad &&
-         delta.translation_m().norm() <= 2.0 * options.max_edge_translation_error_m;
-}
-
-// Accepted pose of `to` in `from` per the pair's edge, if that pair is accepted.
-std::optional<Pose2> AcceptedEdge(const std::vector<std::vector<int>>& index,
-                                  const std::vector<PairOutcome>& pairs, int from, int to) {
-  const int k = index[from][to];
-  if (k < 0 || !pairs[k].accepted) return std::nullopt;
-  const Pose2& T = pairs[k].hypotheses[pairs[k].edge_hypothesis].T_a_b;
-  return pairs[k].a == from ? T : T.inverse();
-}
-
-// (supporting, contradicting) triangles of hypothesis T_a_b among the other accepted edges.
-std::pair<int, int> TriangleVotes(const std::vector<std::vector<int>>& index,
-                                  const std::vector<PairOutcome>& pairs, int a, int b,
-                                  const Pose2& T_a_b, const PoseGraphOptions& options) {
-  int support = 0, contradict = 0;
-  for (int c = 0; c < static_cast<int>(index.size()); ++c) {
-    if (c == a || c == b) continue;
-    const auto T_a_c = AcceptedEdge(index, pairs, a, c);
-    const auto T_c_b = AcceptedEdge(index, pairs, c, b);
-    if (!T_a_c || !T_c_b) continue;
-    (TriangleAgrees(T_a_b, *T_a_c, *T_c_b, options) ? support : contradict)++;
+// The accepted edges as poses both ways (index [from][to]), each with its rotation matrix. The
+// triangle votes compose them (accepted edges) x (maps) times per pass, and every solve of the
+// fleet makes a pass: made once per edge, the inverses and rotations cost O(edges), not
+// O(edges x maps) sines and cosines (100 robots: the refine stage's main cost). The same
+// arithmetic as Pose2's operators, so the same votes.
+class AcceptedEdges {
+ public:
+  AcceptedEdges(int map_count, const std::vector<PairOutcome>& pairs)
+      : map_count_(map_count), edges_(std::size_t(map_count) * map_count) {
+    for (const PairOutcome& pair : pairs) Update(pair);
   }
-  return {support, contradict};
-}
+
+  // After `pair` was accepted, refused or given another hypothesis.
+  void Update(const PairOutcome& pair) {
+    Edge& forward = edges_[std::size_t(pair.a) * map_count_ + pair.b];
+    Edge& backward = edges_[std::size_t(pair.b) * map_count_ + pair.a];
+    forward.accepted = backward.accepted = pair.accepted;
+    if (!pair.accepted) return;
+    forward = Edge(pair.hypotheses[pair.edge_hypothesis].T_a_b);
+    backward = Edge(forward.T.inverse());
+  }
+
+  // (supporting, contradicting) triangles of hypothesis T_a_b among the accepted edges a-c, c-b.
+  std::pair<int, int> Votes(int a, int b, const Pose2& T_a_b,
+                            const PoseGraphOptions& options) const {
+    const Edge T_b_a(T_a_b.inverse());
+    const double max_yaw_rad = 2.0 * options.max_edge_yaw_error_rad;
+    const double max_translation_m = 2.0 * options.max_edge_translation_error_m;
+    int support = 0, contradict = 0;
+    for (int c = 0; c < map_count_; ++c) {
+      if (c == a || c == b) continue;
+      const Edge& a_c = edges_[std::size_t(a) * map_count_ + c];
+      const Edge& c_b = edges_[std::size_t(c) * map_count_ + b];
+      if (!a_c.accepted || !c_b.accepted) continue;
+      // Whether T_a_b agrees with the path a -> c -> b (tolerances doubled: three pairwise
+      // errors add up around a triangle). delta = T_a_b^-1 * (T_a_c * T_c_b).
+      const Pose2 delta = T_b_a * (a_c * c_b.T);
+      const bool agrees = std::abs(delta.yaw_rad()) <= max_yaw_rad &&
+                          delta.translation_m().norm() <= max_translation_m;
+      (agrees ? support : contradict)++;
+    }
+    return {support, contradict};
+  }
+
+ private:
+  struct Edge {
+    Edge() = default;
+    explicit Edge(const Pose2& T) : accepted(true), T(T), R(T.rotation()) {}
+    // Pose2::operator*, with the rotation made once.
+    Pose2 operator*(const Pose2& T_b_c) const {
+      return Pose2(T.translation_m() + R * T_b_c.translation_m(), T.yaw_rad() + T_b_c.yaw_rad());
+    }
+    bool accepted = false;
+    Pose2 T;
+    Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+  };
+  int map_count_;
+  std::vector<Edge> edges_;
+};
 
 // Before any solve (so the spanning tree cannot be led by a wrong edge): the edge most
 // contradicted by its triangles is replaced by a hypothesis they support, or rejected; repeat.
 void ResolveTriangleConflicts(int map_count, std::vector<PairOutcome>& pairs,
                               const PoseGraphOptions& options) {
-  std::vector<std::vector<int>> index(map_count, std::vector<int>(map_count, -1));
-  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
-    index[pairs[k].a][pairs[k].b] = index[pairs[k].b][pairs[k].a] = k;
-  }
+  AcceptedEdges edges(map_count, pairs);
   for (std::size_t round = 0; round < pairs.size(); ++round) {
     int worst = -1, worst_margin = 0;
     for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
       if (!pairs[k].accepted) continue;
-      const auto [support, contradict] =
-          TriangleVotes(index, pairs, pairs[k].a, pairs[k].b,
-                        pairs[k].hypotheses[pairs[k].edge_hypothesis].T_a_b, options);
+      const auto [support, contradict] = edges.Votes(
+          pairs[k].a, pairs[k].b, pairs[k].hypotheses[pairs[k].edge_hypothesis].T_a_b, options);
       const int margin = contradict - support;
       // Equal margins: the pair with the weaker walls goes first (two wrong edges of one map
       // contradict each other's right neighbours as much as themselves).
@@ -234,13 +257,15 @@ void ResolveTriangleConflicts(int map_count, std::vector<PairOutcome>& pairs,
     PairOutcome& pair = pairs[worst];
     const int rejected = pair.edge_hypothesis;
     pair.accepted = false;
+    edges.Update(pair);
     for (int h = 0; h < static_cast<int>(pair.hypotheses.size()); ++h) {
       if (h == rejected) continue;
       const auto [support, contradict] =
-          TriangleVotes(index, pairs, pair.a, pair.b, pair.hypotheses[h].T_a_b, options);
+          edges.Votes(pair.a, pair.b, pair.hypotheses[h].T_a_b, options);
       if (support > contradict) {
         pair.accepted = true;
         pair.edge_hypothesis = h;
+        edges.Update(pair);
         pair.note = "hypothesis " + std::to_string(rejected + 1) +
                     " contradicted its triangles; replaced by hypothesis " + std::to_string(h + 1);
         break;
