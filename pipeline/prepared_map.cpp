@@ -14,10 +14,11 @@ const AlignmentTarget& PreparedMap::Target(int scale) const {
   std::unique_ptr<const AlignmentTarget>& target = targets_[scale];
   if (!target) {
     const OccupancyGrid& grid = features_.grid;
-    target = scale == 1 ? std::make_unique<const AlignmentTarget>(grid, truncation_cells_)
-                        : std::make_unique<const AlignmentTarget>(
-                              ResampleToResolution(grid, grid.geometry().resolution_m() * scale),
-                              truncation_cells_);
+    target = scale == 1
+                 ? std::make_unique<const AlignmentTarget>(features_.occupied, truncation_cells_)
+                 : std::make_unique<const AlignmentTarget>(
+                       ResampleToResolution(grid, grid.geometry().resolution_m() * scale),
+                       truncation_cells_);
   }
   return *target;
 }

@@ -88,9 +88,10 @@ class WallDistanceCost : public ceres::CostFunction {
   double flat_residual_;  // the residual where the field is flat (at the truncation value)
 };
 
-std::vector<Eigen::Vector2d> WallPoints(const OccupancyGrid& grid) {
+std::vector<Eigen::Vector2d> ToDouble(const std::vector<Eigen::Vector2f>& points) {
   std::vector<Eigen::Vector2d> out;
-  for (const auto& p : OccupiedCellCenters(grid)) out.push_back(p.cast<double>());
+  out.reserve(points.size());
+  for (const auto& p : points) out.push_back(p.cast<double>());
   return out;
 }
 
@@ -121,7 +122,11 @@ int AddResiduals(ceres::Problem& problem, double* pose, const WallDistanceField&
 }  // namespace
 
 AlignmentTarget::AlignmentTarget(const OccupancyGrid& grid, double truncation_cells)
-    : field(grid, truncation_cells), wall_points(WallPoints(grid)) {}
+    : AlignmentTarget(OccupiedCellCenters(grid), truncation_cells) {}
+
+AlignmentTarget::AlignmentTarget(const std::vector<Eigen::Vector2f>& wall_centres,
+                                 double truncation_cells)
+    : field(wall_centres, truncation_cells), wall_points(ToDouble(wall_centres)) {}
 
 LocalAlignmentResult RefineAlignment(const AlignmentTarget& a, const AlignmentTarget& b,
                                      const Pose2& T_ga_gb_initial,

@@ -27,6 +27,8 @@ struct LocalAlignmentOptions {
 struct AlignmentTarget {
   // truncation_cells caps the distance field: the basin of convergence.
   explicit AlignmentTarget(const OccupancyGrid& grid, double truncation_cells = 6.0);
+  // From the grid's OccupiedCellCenters: one pass over the grid for the field and the points.
+  AlignmentTarget(const std::vector<Eigen::Vector2f>& wall_centres, double truncation_cells);
   WallDistanceField field;
   std::vector<Eigen::Vector2d> wall_points;
 };

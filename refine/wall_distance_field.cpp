@@ -11,14 +11,23 @@
 namespace fleetmerge {
 
 WallDistanceField::WallDistanceField(const OccupancyGrid& grid, double truncation_cells)
+    : WallDistanceField(OccupiedCellCenters(grid), truncation_cells) {}
+
+WallDistanceField::WallDistanceField(const std::vector<Eigen::Vector2f>& walls,
+                                     double truncation_cells)
     : truncation_cells_(truncation_cells) {
   // Only a margin of `truncation` around the walls differs from the truncation value, so the
   // field covers the walls' bounding box plus that margin, not the whole grid (re-framed maps
-  // are mostly unknown).
-  const std::vector<Eigen::Vector2f> walls = OccupiedCellCenters(grid);
-  const cv::Rect box = walls.empty()
-                           ? cv::Rect()
-                           : cv::boundingRect(grid.cells() == std::uint8_t(CellState::kOccupied));
+  // are mostly unknown). The box from the centres (cell i's is i + 0.5): no pass over the grid.
+  cv::Rect box;
+  if (!walls.empty()) {
+    int i0 = int(walls.front().x()), i1 = i0, j0 = int(walls.front().y()), j1 = j0;
+    for (const auto& w : walls) {
+      i0 = std::min(i0, int(w.x())), i1 = std::max(i1, int(w.x()));
+      j0 = std::min(j0, int(w.y())), j1 = std::max(j1, int(w.y()));
+    }
+    box = cv::Rect(i0, j0, i1 - i0 + 1, j1 - j0 + 1);
+  }
   const int radius = static_cast<int>(std::ceil(truncation_cells));
   const int margin = radius + 2;
   offset_ = Eigen::Array2i(box.x - margin, box.y - margin);

@@ -24,6 +24,8 @@ class WallDistanceField {
   // truncation_cells caps the distance: walls farther than that pull no more (and far outside
   // the grid the field is flat), so non-overlapping parts of the maps exert no force.
   WallDistanceField(const OccupancyGrid& grid, double truncation_cells);
+  // The same field from the grid's OccupiedCellCenters, where the caller has them already.
+  WallDistanceField(const std::vector<Eigen::Vector2f>& wall_centres, double truncation_cells);
   WallDistanceField(const WallDistanceField&) = delete;
   WallDistanceField& operator=(const WallDistanceField&) = delete;
 
