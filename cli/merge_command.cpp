@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <exception>
@@ -152,6 +153,12 @@ int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream
   for (Job& job : jobs) {  // the command line's cache is every job's
     if (command.cache_dir) job.options.cache_dir = *command.cache_dir;
     if (command.cache_max_mb) job.options.cache_max_mb = *command.cache_max_mb;
+  }
+  const bool some_cache = std::any_of(
+      jobs.begin(), jobs.end(), [](const Job& job) { return !job.options.cache_dir.empty(); });
+  if (command.cache_max_mb && !some_cache) {
+    throw Error("--cache-max-mb " + std::to_string(*command.cache_max_mb) +
+                ": no job uses a cache; give --cache DIR (or a job file's 'cache:')");
   }
   return RunJobs(jobs, command.quiet, out, err, command.force, command.lock_wait_s);
 }

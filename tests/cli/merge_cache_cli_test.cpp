@@ -129,6 +129,14 @@ TEST_F(MergeCacheCliTest, ACacheFolderThatIsAFileFailsTheJobNamingIt) {
   EXPECT_FALSE(fs::exists(dir_ / "out" / "report.json"));
 }
 
+TEST_F(MergeCacheCliTest, ASizeBoundWithoutACacheIsAnError) {
+  const auto run = Merge(dir_ / "out", "--cache-max-mb 64");
+  EXPECT_EQ(run.exit_code, 1) << run.both();
+  EXPECT_TRUE(Contains(run.err, "--cache-max-mb 64: no job uses a cache; give --cache DIR"))
+      << run.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
 TEST_F(MergeCacheCliTest, ACacheInsideTheOutputFolderIsRefused) {
   for (const fs::path& cache : {dir_ / "out" / "cache", dir_ / "out"}) {
     // "out/" is the folder "out" too.
