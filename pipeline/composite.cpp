@@ -16,15 +16,7 @@ namespace {
 // rounding up to an extra cell.
 constexpr double kIndexSlack = 1e-9;
 
-// Continuous cell coordinates u in the input grid of the centre of target cell (i, j):
-//   u = origin + i * step_i + j * step_j.
-// A rigid motion of a regular grid is affine in the cell indices, so the inner loop needs only
-// multiply-adds, no trigonometry and no pose composition per cell.
-struct CellAffine {
-  Eigen::Vector2d origin;
-  Eigen::Vector2d step_i;
-  Eigen::Vector2d step_j;
-};
+using CellAffine = InputSampler::CellAffine;
 
 // Pose of the target grid frame in the input's grid frame:
 //   T_ingrid_targetgrid = T_ingrid_inmap * T_inmap_merged * T_merged_targetgrid.
@@ -183,6 +175,23 @@ CellState Fuse(int occupied_count, int free_count, FusionMode mode) {
   return occupied ? CellState::kOccupied : CellState::kFree;
 }
 
+InputSampler::InputSampler(const std::vector<CompositeInput>& inputs, const GridGeometry& target)
+    : inputs_(inputs) {
+  for (const CompositeInput& input : inputs) {
+    if (input.grid == nullptr) throw Error("InputSampler: an input has no grid (null pointer)");
+    affines_.push_back(TargetToInputCells(input, target));
+    regions_.push_back(TargetRegionOfInput(input, target));
+  }
+}
+
+cv::Rect InputSampler::Sample(std::size_t k, const cv::Rect& band, cv::Mat1b& scratch) const {
+  const cv::Rect region = regions_[k] & band;
+  if (region.area() == 0) return cv::Rect();
+  scratch(region).setTo(static_cast<std::uint8_t>(CellState::kUnknown));
+  SampleRegion(inputs_[k], affines_[k], region, scratch);
+  return region;
+}
+
 OccupancyGrid SampleOnto(const CompositeInput& input, const GridGeometry& target) {
   if (input.grid == nullptr) throw Error("SampleOnto: the input has no grid (null pointer)");
   OccupancyGrid out(target);
@@ -196,12 +205,7 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
   ValidateInputs(inputs, resolution_m, reference_input);
   const GridGeometry geometry = MergedGeometry(inputs, resolution_m, reference_input);
   const cv::Size size(geometry.width(), geometry.height());
-  std::vector<CellAffine> affines;
-  std::vector<cv::Rect> regions;
-  for (const CompositeInput& input : inputs) {
-    affines.push_back(TargetToInputCells(input, geometry));
-    regions.push_back(TargetRegionOfInput(input, geometry));
-  }
+  const InputSampler sampler(inputs, geometry);
   OccupancyGrid merged(geometry);
   cv::Mat1w occupied_count = cv::Mat1w::zeros(size);
   cv::Mat1w free_count = cv::Mat1w::zeros(size);
@@ -213,10 +217,8 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
     const int y0 = static_cast<int>(band_index) * kBandRows;
     const cv::Rect band(0, y0, size.width, std::min(kBandRows, size.height - y0));
     for (std::size_t k = 0; k < inputs.size(); ++k) {
-      const cv::Rect region = regions[k] & band;
+      const cv::Rect region = sampler.Sample(k, band, sampled);
       if (region.area() == 0) continue;
-      sampled(region).setTo(static_cast<std::uint8_t>(CellState::kUnknown));
-      SampleRegion(inputs[k], affines[k], region, sampled);
       cv::add(occupied_count(region), 1, occupied_count(region),
               sampled(region) == static_cast<std::uint8_t>(CellState::kOccupied));
       cv::add(free_count(region), 1, free_count(region),

@@ -28,6 +28,7 @@
 //   kVote     majority of the known states; a tie is kOccupied (conservative).
 #pragma once
 
+#include <opencv2/core.hpp>
 #include <vector>
 
 #include "core/grid_geometry.hpp"
@@ -59,6 +60,36 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
 // frame): the lookup Composite fuses, also used to colour previews. kUnknown where the centre
 // falls outside the input grid.
 OccupancyGrid SampleOnto(const CompositeInput& input, const GridGeometry& target);
+
+// The inputs' states at the cell centres of `target`, one band of rows at a time: what Composite
+// fuses and ColourPreview colours. Only the cells an input can reach are sampled, so a fleet of
+// many maps costs what its maps cover, not maps x target cells.
+class InputSampler {
+ public:
+  // Keeps a reference to `inputs` (every grid set), which must outlive the sampler.
+  InputSampler(const std::vector<CompositeInput>& inputs, const GridGeometry& target);
+
+  // Writes input k's state at each cell centre of the returned part of `band` (target cells)
+  // into `scratch` (target-sized; kUnknown where the centre falls outside the input grid) and
+  // returns that part: empty when the input cannot reach the band. Other cells of `scratch` are
+  // left as they are, so threads may sample disjoint bands into one scratch.
+  cv::Rect Sample(std::size_t k, const cv::Rect& band, cv::Mat1b& scratch) const;
+
+  // Continuous cell coordinates u in an input grid of the centre of target cell (i, j):
+  //   u = origin + i * step_i + j * step_j.
+  // A rigid motion of a regular grid is affine in the cell indices, so the inner loop needs only
+  // multiply-adds, no trigonometry and no pose composition per cell.
+  struct CellAffine {
+    Eigen::Vector2d origin;
+    Eigen::Vector2d step_i;
+    Eigen::Vector2d step_j;
+  };
+
+ private:
+  const std::vector<CompositeInput>& inputs_;
+  std::vector<CellAffine> affines_;  // target cells -> input k's cells
+  std::vector<cv::Rect> regions_;    // target cells whose centres can fall inside input k
+};
 
 // The fusion rule above for one merged cell, given how many maps see it occupied and free.
 CellState Fuse(int occupied_count, int free_count, FusionMode mode);

@@ -11,38 +11,54 @@ namespace {
 // free space stays clearly lighter than every occupied colour.
 constexpr double kFreeTintWeight = 0.2;
 
-// Mean colour of the inputs whose sampled state at (j, i) is `state`; false if there are none.
-bool MeanColourOf(const std::vector<cv::Mat1b>& sampled, int j, int i, CellState state,
-                  cv::Vec3d& mean_bgr) {
-  mean_bgr = cv::Vec3d(0.0, 0.0, 0.0);
-  int count = 0;
-  for (std::size_t k = 0; k < sampled.size(); ++k) {
-    if (sampled[k](j, i) != static_cast<std::uint8_t>(state)) continue;
-    const cv::Vec3b colour = PaletteColour(static_cast<int>(k));
-    mean_bgr += cv::Vec3d(colour[0], colour[1], colour[2]);
-    ++count;
-  }
-  if (count == 0) return false;
-  mean_bgr /= count;
-  return true;
-}
+// One band of preview rows: per cell, the sum of the colours of the inputs that see it free
+// (occupied) and how many do. Colours are integers, so the sums are exact in any order.
+struct BandColours {
+  explicit BandColours(const cv::Rect& band)
+      : band(band),
+        free_sum(band.height, band.width, cv::Vec3i(0, 0, 0)),
+        occupied_sum(band.height, band.width, cv::Vec3i(0, 0, 0)),
+        free_count(band.height, band.width, 0),
+        occupied_count(band.height, band.width, 0) {}
 
-cv::Vec3b PixelColour(const std::vector<cv::Mat1b>& sampled, int j, int i, CellState merged) {
-  cv::Vec3d mean_bgr;
-  switch (merged) {
-    case CellState::kUnknown:
-      return kPreviewUnknown;
-    case CellState::kFree:
-      if (!MeanColourOf(sampled, j, i, CellState::kFree, mean_bgr)) return kPreviewFree;
-      return cv::Vec3d(kPreviewFree) * (1.0 - kFreeTintWeight) + mean_bgr * kFreeTintWeight;
-    case CellState::kOccupied:
-      if (!MeanColourOf(sampled, j, i, CellState::kOccupied, mean_bgr)) {
-        return kPreviewOccupiedByNone;
+  void Add(const cv::Mat1b& sampled, const cv::Rect& region, const cv::Vec3i& colour) {
+    for (int j = region.y; j < region.y + region.height; ++j) {
+      const std::uint8_t* states = sampled.ptr<std::uint8_t>(j);
+      const int r = j - band.y;
+      for (int i = region.x; i < region.x + region.width; ++i) {
+        if (states[i] == static_cast<std::uint8_t>(CellState::kFree)) {
+          free_sum(r, i) += colour;
+          ++free_count(r, i);
+        } else if (states[i] == static_cast<std::uint8_t>(CellState::kOccupied)) {
+          occupied_sum(r, i) += colour;
+          ++occupied_count(r, i);
+        }
       }
-      return mean_bgr;
+    }
   }
-  return kPreviewUnknown;
-}
+
+  // The pixel of merged cell (i, j) of the band, in state `merged`.
+  cv::Vec3b Pixel(int j, int i, CellState merged) const {
+    const int r = j - band.y;
+    switch (merged) {
+      case CellState::kUnknown:
+        return kPreviewUnknown;
+      case CellState::kFree: {
+        if (free_count(r, i) == 0) return kPreviewFree;
+        const cv::Vec3d mean_bgr = cv::Vec3d(free_sum(r, i)) / free_count(r, i);
+        return cv::Vec3d(kPreviewFree) * (1.0 - kFreeTintWeight) + mean_bgr * kFreeTintWeight;
+      }
+      case CellState::kOccupied:
+        if (occupied_count(r, i) == 0) return kPreviewOccupiedByNone;
+        return cv::Vec3d(occupied_sum(r, i)) / occupied_count(r, i);
+    }
+    return kPreviewUnknown;
+  }
+
+  cv::Rect band;
+  cv::Mat_<cv::Vec3i> free_sum, occupied_sum;
+  cv::Mat1i free_count, occupied_count;
+};
 
 }  // namespace
 
@@ -59,18 +75,27 @@ cv::Vec3b PaletteColour(int input_index) {
 
 cv::Mat3b ColourPreview(const std::vector<CompositeInput>& inputs, const OccupancyGrid& merged,
                         int threads) {
-  std::vector<cv::Mat1b> sampled(inputs.size());
-  ParallelFor(inputs.size(), threads, [&](std::size_t k) {
-    sampled[k] = SampleOnto(inputs[k], merged.geometry()).cells();
-  });
-  const int height = merged.height();
-  cv::Mat3b image(height, merged.width());
-  ParallelFor(static_cast<std::size_t>(height), threads, [&](std::size_t row) {
-    const int j = static_cast<int>(row);
-    // Grid rows count up from the bottom, image rows down from the top: flip.
-    cv::Vec3b* image_row = image.ptr<cv::Vec3b>(height - 1 - j);
-    for (int i = 0; i < merged.width(); ++i) {
-      image_row[i] = PixelColour(sampled, j, i, merged.at({i, j}));
+  const InputSampler sampler(inputs, merged.geometry());
+  const int height = merged.height(), width = merged.width();
+  cv::Mat3b image(height, width);
+  cv::Mat1b sampled(height, width);  // scratch; each band touches its own rows
+  // Bands of rows, each coloured from the inputs that reach it: the inputs are sampled over
+  // what they cover only (a fleet of 100 maps held 100 merged-size grids here before).
+  constexpr int kBandRows = 64;
+  const int bands = (height + kBandRows - 1) / kBandRows;
+  ParallelFor(static_cast<std::size_t>(bands), threads, [&](std::size_t band_index) {
+    const int y0 = static_cast<int>(band_index) * kBandRows;
+    BandColours colours(cv::Rect(0, y0, width, std::min(kBandRows, height - y0)));
+    for (std::size_t k = 0; k < inputs.size(); ++k) {
+      const cv::Rect region = sampler.Sample(k, colours.band, sampled);
+      if (region.area() > 0) {
+        colours.Add(sampled, region, cv::Vec3i(PaletteColour(static_cast<int>(k))));
+      }
+    }
+    for (int j = colours.band.y; j < colours.band.y + colours.band.height; ++j) {
+      // Grid rows count up from the bottom, image rows down from the top: flip.
+      cv::Vec3b* image_row = image.ptr<cv::Vec3b>(height - 1 - j);
+      for (int i = 0; i < width; ++i) image_row[i] = colours.Pixel(j, i, merged.at({i, j}));
     }
   });
   return image;
