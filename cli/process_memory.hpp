@@ -13,6 +13,13 @@ namespace fleetmerge {
 // to 32 MiB on the heap and trims it only beyond 1 GiB free. The price is a somewhat higher
 // peak, as freed blocks stay resident for reuse (fleet_benchmark's 8-map job: 77 MB with these
 // settings against 65 MB without, measured side by side; its current peak: docs/speed.md).
+//
+// It also puts every thread on one heap (M_ARENA_MAX 1) and reserves 768 MiB of untouched heap
+// marked for transparent huge pages (madvise MADV_HUGEPAGE, as glibc's glibc.malloc.hugetlb=1
+// tunable does), so that the working set is faulted in 2 MiB pages: page faults had been a fifth
+// of a `fleetmerge pair` process and a tenth of a fleet merge on a VM whose page faults are dear
+// (docs/speed.md). Only address space is reserved (the process's VSZ grows, not its RSS), and
+// only where that is free: not under ulimit -v / -d or strict overcommit accounting.
 void KeepFreedMemoryForReuse();
 
 }  // namespace fleetmerge
