@@ -188,7 +188,10 @@ int main(int argc, char** argv) {
   try {
     if (demo_app->parsed()) return RunDemoCommand(demo, std::cout, std::cerr);
     if (merge_app->parsed()) return RunMergeCommand(merge, std::cout, std::cerr);
-    if (pair_app->parsed()) return RunPairCommand(pair, std::cout);
+    if (pair_app->parsed()) {
+      ShareTheHeapBetweenThreads();
+      return RunPairCommand(pair, std::cout);
+    }
     if (extract_app->parsed()) return RunExtractCommand(extract, std::cout);
     if (example_app->parsed()) return RunExampleCommand(example, std::cout);
     if (simulate_app->parsed()) return RunSimulateCommand(simulate, std::cout);

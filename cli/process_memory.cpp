@@ -58,8 +58,9 @@ void ReserveHugePageHeap(std::size_t bytes) {
 void KeepFreedMemoryForReuse() {
   mallopt(M_MMAP_THRESHOLD, 32 << 20);  // glibc's maximum (HEAP_MAX_SIZE / 2 on 64-bit)
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
-  mallopt(M_ARENA_MAX, 1);  // every thread on the one heap below
   if (ReservationIsFree()) ReserveHugePageHeap(768 * kMiB);
 }
+
+void ShareTheHeapBetweenThreads() { mallopt(M_ARENA_MAX, 1); }
 
 }  // namespace fleetmerge

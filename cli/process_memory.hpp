@@ -14,12 +14,19 @@ namespace fleetmerge {
 // peak, as freed blocks stay resident for reuse (fleet_benchmark's 8-map job: 77 MB with these
 // settings against 65 MB without, measured side by side; its current peak: docs/speed.md).
 //
-// It also puts every thread on one heap (M_ARENA_MAX 1) and reserves 768 MiB of untouched heap
-// marked for transparent huge pages (madvise MADV_HUGEPAGE, as glibc's glibc.malloc.hugetlb=1
-// tunable does), so that the working set is faulted in 2 MiB pages: page faults had been a fifth
-// of a `fleetmerge pair` process and a tenth of a fleet merge on a VM whose page faults are dear
-// (docs/speed.md). Only address space is reserved (the process's VSZ grows, not its RSS), and
-// only where that is free: not under ulimit -v / -d or strict overcommit accounting.
+// It also reserves 768 MiB of untouched heap marked for transparent huge pages (madvise
+// MADV_HUGEPAGE, as glibc's glibc.malloc.hugetlb=1 tunable does), so that the main thread's
+// working set is faulted in 2 MiB pages: page faults had been a fifth of a `fleetmerge pair`
+// process and a tenth of a fleet merge on a VM whose page faults are dear (docs/speed.md). Only
+// address space is reserved (the process's VSZ grows, not its RSS), and only where that is free:
+// not under ulimit -v / -d or strict overcommit accounting.
 void KeepFreedMemoryForReuse();
+
+// Puts every thread on the main heap (M_ARENA_MAX 1), and so on its huge pages; call it before
+// any thread allocates. For one pair (`fleetmerge pair`, whose threads share one search): its
+// process took 70 ms with per-thread heaps and 58 ms with this. A fleet's threads each search
+// whole pairs and allocate more often; the shared heap's lock made the 33-robot ACES job 3-5 %
+// slower, so `merge` keeps glibc's per-thread heaps.
+void ShareTheHeapBetweenThreads();
 
 }  // namespace fleetmerge
