@@ -80,7 +80,7 @@ cv::Mat3b ColourPreview(const std::vector<CompositeInput>& inputs, const Occupan
   cv::Mat3b image(height, width);
   cv::Mat1b sampled(height, width);  // scratch; each band touches its own rows
   // Bands of rows, each coloured from the inputs that reach it: the inputs are sampled over
-  // what they cover only (a fleet of 100 maps held 100 merged-size grids here before).
+  // what they cover only, so memory does not grow with maps x merged cells.
   constexpr int kBandRows = 64;
   const int bands = (height + kBandRows - 1) / kBandRows;
   ParallelFor(static_cast<std::size_t>(bands), threads, [&](std::size_t band_index) {
