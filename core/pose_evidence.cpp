@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/parallel.hpp"
 #include "core/wall_agreement.hpp"
 
 namespace fleetmerge {
@@ -80,8 +81,8 @@ double MeasureEvidence(const MapFeatures& a, const MapFeatures& b, CellHypothesi
 }
 
 RankedHypotheses RankByEvidence(const MapFeatures& a, const MapFeatures& b,
-                                std::vector<CellHypothesis> sorted,
-                                std::int64_t min_overlap_cells) {
+                                std::vector<CellHypothesis> sorted, std::int64_t min_overlap_cells,
+                                int threads) {
   RankedHypotheses ranked;
   ranked.margin_nats = std::numeric_limits<double>::infinity();
   if (sorted.empty()) return ranked;
@@ -95,11 +96,11 @@ RankedHypotheses RankByEvidence(const MapFeatures& a, const MapFeatures& b,
   // of the tie or else the second hypothesis: only those are measured (the chance rates cost
   // four wall counts each way); every hypothesis gets its wall agreement.
   const std::size_t measured = std::max<std::size_t>(tied_end - sorted.begin(), 2);
-  for (std::size_t k = 0; k < sorted.size(); ++k) {
+  ParallelFor(sorted.size(), threads, [&](std::size_t k) {
     const WallCounts walls = CountBothWays(a, b, sorted[k]);
     sorted[k].evidence_nats =
         k < measured ? Evidence(a, b, sorted[k], walls) : std::numeric_limits<double>::quiet_NaN();
-  }
+  });
   std::stable_sort(sorted.begin(), tied_end, [](const CellHypothesis& l, const CellHypothesis& r) {
     return l.evidence_nats > r.evidence_nats;
   });

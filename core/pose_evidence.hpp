@@ -59,8 +59,10 @@ struct RankedHypotheses {
 
 // Ranks the hypotheses (see above): sets every hypothesis' wall agreement, and the evidence of
 // those it compares (the tie and the runner-up; NaN for the others). `sorted` is in
-// SortHypotheses' order and free of duplicates (each a different pose).
+// SortHypotheses' order and free of duplicates (each a different pose). The hypotheses are
+// measured on `threads` threads (<= 0: all cores), each on its own: the same result for any count.
 RankedHypotheses RankByEvidence(const MapFeatures& a, const MapFeatures& b,
-                                std::vector<CellHypothesis> sorted, std::int64_t min_overlap_cells);
+                                std::vector<CellHypothesis> sorted, std::int64_t min_overlap_cells,
+                                int threads = 1);
 
 }  // namespace fleetmerge

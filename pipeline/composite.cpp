@@ -61,6 +61,18 @@ cv::Rect TargetRegionOfInput(const CompositeInput& input, const GridGeometry& ta
   return cv::Rect(x0, y0, std::max(0, x1 - x0), std::max(0, y1 - y0));
 }
 
+// Narrows [*begin, *end) to the i with 0 <= start + i * step < limit, give or take a cell.
+void ClipRowToInput(double start, double step, double limit, int* begin, int* end) {
+  if (step == 0.0) {
+    if (!(start >= 0.0 && start < limit)) *end = *begin;
+    return;
+  }
+  const double i0 = -start / step, i1 = (limit - start) / step;  // the range's ends, any order
+  const double lo = std::floor(std::min(i0, i1)) - 1.0, hi = std::ceil(std::max(i0, i1)) + 1.0;
+  if (lo > *begin) *begin = lo >= *end ? *end : static_cast<int>(lo);
+  if (hi < *end) *end = hi <= *begin ? *begin : static_cast<int>(hi);
+}
+
 // Writes the input's state at each target cell centre of `region` into `out` (target-sized);
 // cells of the region outside the input are left as they are.
 void SampleRegion(const CompositeInput& input, const CellAffine& affine, const cv::Rect& region,
@@ -71,7 +83,13 @@ void SampleRegion(const CompositeInput& input, const CellAffine& affine, const c
   for (int j = region.y; j < region.y + region.height; ++j) {
     const Eigen::Vector2d row_start = affine.origin + j * affine.step_j;
     std::uint8_t* out_row = out.ptr<std::uint8_t>(j);
-    for (int i = region.x; i < region.x + region.width; ++i) {
+    // The row's cells whose centres can land inside the input, widened by a cell against
+    // rounding (the test below still decides each cell): a rotated input fills about half of
+    // its bounding box.
+    int i_begin = region.x, i_end = region.x + region.width;
+    ClipRowToInput(row_start.x(), affine.step_i.x(), width, &i_begin, &i_end);
+    ClipRowToInput(row_start.y(), affine.step_i.y(), height, &i_begin, &i_end);
+    for (int i = i_begin; i < i_end; ++i) {
       // u = row_start + i * step_i, not a running sum: no drift along long rows.
       const double ux = row_start.x() + i * affine.step_i.x();
       const double uy = row_start.y() + i * affine.step_i.y();

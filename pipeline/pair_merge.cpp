@@ -110,7 +110,7 @@ RankedHypotheses RankedCellHypotheses(const PreparedMap& prepared_a, const Prepa
   // Ranked before the cut, so that a runner-up beyond `wanted` still tells a coin toss.
   RankedHypotheses ranked =
       RankByEvidence(prepared_a.features(), prepared_b.features(), std::move(hypotheses),
-                     options.hypotheses.min_overlap_cells);
+                     options.hypotheses.min_overlap_cells, threads);
   if (static_cast<int>(ranked.hypotheses.size()) > wanted) {
     ranked.hypotheses.resize(std::max(wanted, 0));
   }
