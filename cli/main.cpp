@@ -56,6 +56,13 @@ int main(int argc, char** argv) {
                         "(repeatable; default every map topic)");
   merge_app->add_option("--out", merge.out_dir, "treat the inputs as maps of one job, output here");
   merge_app->add_option("--reference", merge.reference, "with --out: the reference map's name");
+  merge_app->add_option("--fixed", merge.fixed_maps,
+                        "with --out: NAME or NAME=X,Y,YAW: a fixed base map that never moves, at "
+                        "this pose of its frame in the merged frame (default identity; "
+                        "repeatable)");
+  merge_app->add_option("--initial-pose", merge.initial_poses,
+                        "with --out: NAME=X,Y,YAW[,SIGMA_M,SIGMA_RAD]: a map's known start pose "
+                        "in the merged frame (default sigmas 0.5 m, 0.1745 rad; repeatable)");
   merge_app
       ->add_option("--tf-parent", merge.tf_parent_frame,
                    "with --out: parent frame of the transforms written (transforms.launch*)")

@@ -4,11 +4,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <memory>
 #include <ostream>
+#include <sstream>
 #include <string>
+#include <utility>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -115,6 +119,61 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
   }
 }
 
+// A --fixed or --initial-pose value: NAME, or NAME=v1,v2,... with a count in `counts`.
+struct MapPoseOption {
+  std::size_t map = 0;          // index in the job's maps
+  std::vector<double> numbers;  // empty for a bare NAME
+};
+
+MapPoseOption ParseMapPoseOption(const std::string& flag, const std::string& value,
+                                 std::pair<std::size_t, std::size_t> counts, const Job& job) {
+  const std::string expected =
+      counts.first == 0 ? "NAME or NAME=X,Y,YAW (metres, radians)"
+                        : "NAME=X,Y,YAW or NAME=X,Y,YAW,SIGMA_M,SIGMA_RAD (metres, radians)";
+  const auto fail = [&](const std::string& why) {
+    return Error(flag + " '" + value + "': " + why + "; expected " + expected);
+  };
+  // Numbers hold no '=', so the last one ends the name.
+  const std::size_t equals = value.rfind('=');
+  const std::string name = value.substr(0, equals);
+  MapPoseOption option;
+  const auto named = std::find_if(job.maps.begin(), job.maps.end(),
+                                  [&](const JobMap& map) { return map.name == name; });
+  if (named == job.maps.end()) {
+    std::string names;
+    for (const JobMap& map : job.maps) names += (names.empty() ? "'" : ", '") + map.name + "'";
+    throw Error(flag + " '" + value + "': no map is named '" + name + "' (the maps: " + names +
+                ")");
+  }
+  option.map = static_cast<std::size_t>(named - job.maps.begin());
+  if (equals == std::string::npos) {
+    if (counts.first != 0) throw fail("no pose given");
+    return option;
+  }
+  const std::string text = value.substr(equals + 1);
+  if (text.empty() || text.back() == ',') throw fail("a number is missing");
+  std::istringstream numbers(text);
+  for (std::string word; std::getline(numbers, word, ',');) {
+    char* end = nullptr;
+    const double number = std::strtod(word.c_str(), &end);
+    if (word.empty() || end != word.c_str() + word.size() || !std::isfinite(number)) {
+      throw fail("'" + word + "' is not a finite number");
+    }
+    option.numbers.push_back(number);
+  }
+  if (option.numbers.size() != (counts.first == 0 ? 3 : counts.first) &&
+      option.numbers.size() != counts.second) {
+    throw fail(std::to_string(option.numbers.size()) + " numbers");
+  }
+  return option;
+}
+
+Error RepeatedMap(const std::string& flag, const std::string& value, const std::string& name) {
+  return Error(flag + " '" + value + "': map '" + name +
+               "' is already given by --fixed or --initial-pose (a fixed map's pose is exact; it "
+               "has no start pose)");
+}
+
 }  // namespace
 
 Job JobFromMapList(const MergeCommand& command) {
@@ -122,6 +181,44 @@ Job JobFromMapList(const MergeCommand& command) {
                        command.topics);
   job.tf_parent_frame = command.tf_parent_frame;
   job.tf_child_frame = command.tf_child_frame;
+  std::vector<bool> given(job.maps.size(), false);  // by --fixed or --initial-pose
+  for (const std::string& value : command.fixed_maps) {
+    const MapPoseOption option = ParseMapPoseOption("--fixed", value, {0, 3}, job);
+    JobMap& map = job.maps[option.map];
+    if (given[option.map]) throw RepeatedMap("--fixed", value, map.name);
+    given[option.map] = true;
+    map.fixed = true;
+    if (!option.numbers.empty()) {
+      map.T_merged_map = Pose2(option.numbers[0], option.numbers[1], option.numbers[2]);
+    }
+  }
+  for (const std::string& value : command.initial_poses) {
+    const MapPoseOption option = ParseMapPoseOption("--initial-pose", value, {3, 5}, job);
+    JobMap& map = job.maps[option.map];
+    if (given[option.map]) throw RepeatedMap("--initial-pose", value, map.name);
+    given[option.map] = true;
+    PosePrior prior;
+    prior.T_site_map = Pose2(option.numbers[0], option.numbers[1], option.numbers[2]);
+    if (option.numbers.size() == 5) {
+      prior.translation_sigma_m = option.numbers[3];
+      prior.yaw_sigma_rad = option.numbers[4];
+      if (!(prior.translation_sigma_m > 0.0) || !(prior.yaw_sigma_rad > 0.0)) {
+        throw Error("--initial-pose '" + value + "': the sigmas (metres, radians) must be > 0");
+      }
+    }
+    map.prior = prior;
+  }
+  // With fixed maps the merged frame is theirs: the first fixed map is the reference (as in a
+  // job file).
+  const auto first_fixed =
+      std::find_if(job.maps.begin(), job.maps.end(), [](const JobMap& map) { return map.fixed; });
+  if (first_fixed != job.maps.end()) {
+    if (command.reference && *command.reference != first_fixed->name) {
+      throw Error("--reference '" + *command.reference + "': with fixed maps the reference is " +
+                  "the first fixed map, '" + first_fixed->name + "'; leave --reference out");
+    }
+    job.reference = first_fixed->name;
+  }
   return job;
 }
 
@@ -145,6 +242,11 @@ int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream
   if (command.out_dir) {
     jobs.push_back(JobFromMapList(command));
   } else {
+    if (!command.fixed_maps.empty() || !command.initial_poses.empty()) {
+      throw Error(std::string(command.fixed_maps.empty() ? "--initial-pose" : "--fixed") +
+                  " names a map of --out's map list; a job file gives its maps' 'fixed', 'pose' "
+                  "and 'initial_pose' keys itself (configs/README.md)");
+    }
     // Every job file is validated before any job runs.
     for (const auto& file : command.inputs) {
       for (Job& job : LoadJobFile(file)) jobs.push_back(std::move(job));

@@ -26,12 +26,20 @@ struct MergeCommand {
   bool force = false;  // replace an output folder holding another job's results
   double lock_wait_s = kDefaultOutputLockWaitS;  // for another job writing the same folder
   FleetOptions options;                          // with --out
+  // With --out: "NAME" or "NAME=X,Y,YAW" (a fixed base map at that pose, default identity), and
+  // "NAME=X,Y,YAW" or "NAME=X,Y,YAW,SIGMA_M,SIGMA_RAD" (a known start pose), as a job file's
+  // fixed/pose and initial_pose/initial_pose_sigma (configs/README.md).
+  std::vector<std::string> fixed_maps;
+  std::vector<std::string> initial_poses;
   // Set for every job (job files' `cache` / `cache_max_mb` otherwise).
   std::optional<std::filesystem::path> cache_dir;
   std::optional<std::int64_t> cache_max_mb;
 };
 
-// The job described by `--out DIR a.yaml b.yaml ...`.
+// The job described by `--out DIR a.yaml b.yaml ...`, with its --fixed and --initial-pose maps.
+// Throws fleetmerge::Error naming the option and its value for a name that is no map's, a
+// malformed or non-finite pose, a sigma <= 0, a map given twice, a fixed map with a start pose,
+// or a --reference other than the first fixed map.
 Job JobFromMapList(const MergeCommand& command);
 
 // Runs the jobs in order; a failing job is reported on `err` and the others still run. Each

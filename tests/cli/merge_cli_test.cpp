@@ -21,6 +21,7 @@
 
 #include "core/pose2.hpp"
 #include "io/map_io.hpp"
+#include "job/pose_prior.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/fleetmerge_cli.hpp"
 #include "tests/support/run_command.hpp"
@@ -325,6 +326,70 @@ TEST_F(MergeCliTest, MapOfAnotherBuildingStaysUnmerged) {
       "merged_0_preview.png", "transforms.launch", "transforms.launch.yaml", "report.html",
       "report_map_0.png",     "report_map_1.png",  "report_map_2.png",       "merged_bag"};
   EXPECT_EQ(FilesIn(out), expected) << "no merged map for the unmerged component";
+}
+
+// --fixed and --initial-pose give a map list what a job file's fixed/pose and initial_pose keys
+// give (configs/README.md): the fixed map stays at its pose and is the merged frame, the maps its
+// pairs link follow it, and a map that overlaps nobody is placed at its start pose.
+TEST_F(MergeCliTest, FixedAndInitialPoseOptionsPlaceTheMaps) {
+  const fs::path out = testing::MakeTempDir("merge_fixed_prior") / "out";
+  const Pose2 T_merged_a(1.0, 2.0, 0.5), T_merged_other(3.0, 4.0, 0.1);
+  json report = MergeOk(out, {A(), B(), Other()},
+                        "--quiet --fixed robot_a=1,2,0.5 --initial-pose other_building=3,4,0.1");
+  ASSERT_EQ(report.value("maps", json::array()).size(), 3u) << report;
+  const json a = MapNamed(report, "robot_a");
+  EXPECT_EQ(a["placed_by"], "fixed");
+  EXPECT_EQ(a["pose"], json({{"x", 1.0}, {"y", 2.0}, {"yaw", 0.5}})) << "a fixed pose is exact";
+  const json b = MapNamed(report, "robot_b");
+  EXPECT_EQ(b["placed_by"], "pairs");
+  ExpectNear(PoseOf(b["pose"]), T_merged_a * T_a_b_, "robot_b: the fixed pose times the truth");
+  const json other = MapNamed(report, "other_building");
+  EXPECT_EQ(other["placed_by"], "prior");
+  ExpectNear(PoseOf(other["pose"]), T_merged_other, "other_building at its start pose");
+  EXPECT_EQ(PoseOf(other["initial_pose"]).translation_m(), T_merged_other.translation_m());
+  EXPECT_EQ(other["initial_pose_sigma"],
+            json({kDefaultPriorTranslationSigmaM, kDefaultPriorYawSigmaRad}));
+}
+
+TEST_F(MergeCliTest, AStartPoseFiveMetresOffRefusesThePairNamingIt) {
+  const fs::path out = testing::MakeTempDir("merge_wrong_prior") / "out";
+  const Pose2 wrong = Pose2(5.0, 0.0, 0.0) * T_a_b_;
+  std::ostringstream option;
+  option.precision(17);
+  option << "--initial-pose robot_b=" << wrong.x_m() << "," << wrong.y_m() << "," << wrong.yaw_rad()
+         << ",0.2,0.05";
+  json report = MergeOk(out, {A(), B()}, "--quiet --fixed robot_a " + option.str());
+  ASSERT_EQ(report.value("pairs", json::array()).size(), 1u) << report;
+  const json& pair = report["pairs"][0];
+  EXPECT_FALSE(pair["accepted"].get<bool>()) << pair;
+  EXPECT_NE(pair.value("note", "").find("initial_pose"), std::string::npos) << pair;
+  EXPECT_EQ(MapNamed(report, "robot_b")["placed_by"], "prior");
+}
+
+TEST_F(MergeCliTest, BadFixedOrInitialPoseIsRefusedBeforeAnyOutput) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--initial-pose robot9=1,2,0", "no map is named 'robot9' (the maps: 'robot_a', 'robot_b')"},
+      {"--initial-pose robot_b=1,2", "2 numbers; expected NAME=X,Y,YAW"},
+      {"--initial-pose robot_b=1,2,0,", "a number is missing"},
+      {"--initial-pose robot_b=1,nan,0", "'nan' is not a finite number"},
+      {"--initial-pose robot_b=1,2,0,-0.5,0.1", "the sigmas (metres, radians) must be > 0"},
+      {"--initial-pose robot_b", "no pose given"},
+      {"--fixed robot_a=1,2,inf", "'inf' is not a finite number"},
+      {"--fixed robot_a --initial-pose robot_a=1,2,0", "map 'robot_a' is already given"},
+      {"--fixed robot_b --reference robot_a", "the reference is the first fixed map, 'robot_b'"},
+  };
+  for (const auto& [options, message] : cases) {
+    const fs::path out = testing::MakeTempDir("merge_bad_prior") / "out";
+    const auto run =
+        Fleetmerge("merge --quiet --out " + ShellQuote(out) + Maps({A(), B()}) + " " + options);
+    EXPECT_NE(run.exit_code, 0) << options;
+    EXPECT_NE(run.err.find(message), std::string::npos) << options << ": " << run.err;
+    EXPECT_FALSE(fs::exists(out)) << options;
+  }
+  const auto job_file = Fleetmerge("merge " + ShellQuote(A()) + " --fixed robot_a");
+  EXPECT_NE(job_file.exit_code, 0);
+  EXPECT_NE(job_file.err.find("--fixed names a map of --out's map list"), std::string::npos)
+      << job_file.err;
 }
 
 TEST_F(MergeCliTest, RealMapOfAnotherBuildingStaysUnmerged) {
