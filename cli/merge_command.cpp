@@ -12,7 +12,6 @@
 #include <ostream>
 #include <sstream>
 #include <string>
-#include <utility>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -119,17 +118,18 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
   }
 }
 
-// A --fixed or --initial-pose value: NAME, or NAME=v1,v2,... with a count in `counts`.
+// A --fixed or --initial-pose value: NAME=X,Y,YAW, NAME=X,Y,YAW,SIGMA_M,SIGMA_RAD (a start pose
+// only) or NAME alone (a fixed map only: at the identity).
 struct MapPoseOption {
   std::size_t map = 0;          // index in the job's maps
   std::vector<double> numbers;  // empty for a bare NAME
 };
 
-MapPoseOption ParseMapPoseOption(const std::string& flag, const std::string& value,
-                                 std::pair<std::size_t, std::size_t> counts, const Job& job) {
+MapPoseOption ParseMapPoseOption(const std::string& flag, const std::string& value, bool fixed,
+                                 const Job& job) {
   const std::string expected =
-      counts.first == 0 ? "NAME or NAME=X,Y,YAW (metres, radians)"
-                        : "NAME=X,Y,YAW or NAME=X,Y,YAW,SIGMA_M,SIGMA_RAD (metres, radians)";
+      fixed ? "NAME or NAME=X,Y,YAW (metres, radians)"
+            : "NAME=X,Y,YAW or NAME=X,Y,YAW,SIGMA_M,SIGMA_RAD (metres, radians)";
   const auto fail = [&](const std::string& why) {
     return Error(flag + " '" + value + "': " + why + "; expected " + expected);
   };
@@ -147,7 +147,7 @@ MapPoseOption ParseMapPoseOption(const std::string& flag, const std::string& val
   }
   option.map = static_cast<std::size_t>(named - job.maps.begin());
   if (equals == std::string::npos) {
-    if (counts.first != 0) throw fail("no pose given");
+    if (!fixed) throw fail("no pose given");
     return option;
   }
   const std::string text = value.substr(equals + 1);
@@ -161,8 +161,7 @@ MapPoseOption ParseMapPoseOption(const std::string& flag, const std::string& val
     }
     option.numbers.push_back(number);
   }
-  if (option.numbers.size() != (counts.first == 0 ? 3 : counts.first) &&
-      option.numbers.size() != counts.second) {
+  if (option.numbers.size() != 3 && (fixed || option.numbers.size() != 5)) {
     throw fail(std::to_string(option.numbers.size()) + " numbers");
   }
   return option;
@@ -183,7 +182,7 @@ Job JobFromMapList(const MergeCommand& command) {
   job.tf_child_frame = command.tf_child_frame;
   std::vector<bool> given(job.maps.size(), false);  // by --fixed or --initial-pose
   for (const std::string& value : command.fixed_maps) {
-    const MapPoseOption option = ParseMapPoseOption("--fixed", value, {0, 3}, job);
+    const MapPoseOption option = ParseMapPoseOption("--fixed", value, true, job);
     JobMap& map = job.maps[option.map];
     if (given[option.map]) throw RepeatedMap("--fixed", value, map.name);
     given[option.map] = true;
@@ -193,7 +192,7 @@ Job JobFromMapList(const MergeCommand& command) {
     }
   }
   for (const std::string& value : command.initial_poses) {
-    const MapPoseOption option = ParseMapPoseOption("--initial-pose", value, {3, 5}, job);
+    const MapPoseOption option = ParseMapPoseOption("--initial-pose", value, false, job);
     JobMap& map = job.maps[option.map];
     if (given[option.map]) throw RepeatedMap("--initial-pose", value, map.name);
     given[option.map] = true;
