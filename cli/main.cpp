@@ -35,8 +35,12 @@ int main(int argc, char** argv) {
       ->required();
   pair_app->add_option("b", pair.b_yaml, "map B (map_server YAML, or a ROS 1/ROS 2 bag)")
       ->required();
-  pair_app->add_option("--topic", pair.topics,
-                       "bags: the nav_msgs/OccupancyGrid topic to read (repeatable)");
+  // Repeatable options take one value per occurrence (allow_extra_args(false)): by default
+  // CLI11 lets a vector option swallow the map paths after it (`--fixed a a.yaml b.yaml`).
+  pair_app
+      ->add_option("--topic", pair.topics,
+                   "bags: the nav_msgs/OccupancyGrid topic to read (repeatable)")
+      ->allow_extra_args(false);
   pair_app->add_option("-n", pair.hypotheses, "number of hypotheses")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
@@ -51,18 +55,24 @@ int main(int argc, char** argv) {
       app.add_subcommand("merge", "Merge the maps of a fleet: job files, or maps with --out DIR");
   merge_app->add_option("inputs", merge.inputs, "job files (YAML), or maps (YAML, bags) with --out")
       ->required();
-  merge_app->add_option("--topic", merge.topics,
-                        "with --out: read only these nav_msgs/OccupancyGrid topics from bags "
-                        "(repeatable; default every map topic)");
+  merge_app
+      ->add_option("--topic", merge.topics,
+                   "with --out: read only these nav_msgs/OccupancyGrid topics from bags "
+                   "(repeatable; default every map topic)")
+      ->allow_extra_args(false);
   merge_app->add_option("--out", merge.out_dir, "treat the inputs as maps of one job, output here");
   merge_app->add_option("--reference", merge.reference, "with --out: the reference map's name");
-  merge_app->add_option("--fixed", merge.fixed_maps,
-                        "with --out: NAME or NAME=X,Y,YAW: a fixed base map that never moves, at "
-                        "this pose of its frame in the merged frame (default identity; "
-                        "repeatable)");
-  merge_app->add_option("--initial-pose", merge.initial_poses,
-                        "with --out: NAME=X,Y,YAW[,SIGMA_M,SIGMA_RAD]: a map's known start pose "
-                        "in the merged frame (default sigmas 0.5 m, 0.1745 rad; repeatable)");
+  merge_app
+      ->add_option("--fixed", merge.fixed_maps,
+                   "with --out: NAME or NAME=X,Y,YAW: a fixed base map that never moves, at "
+                   "this pose of its frame in the merged frame (default identity; "
+                   "repeatable)")
+      ->allow_extra_args(false);
+  merge_app
+      ->add_option("--initial-pose", merge.initial_poses,
+                   "with --out: NAME=X,Y,YAW[,SIGMA_M,SIGMA_RAD]: a map's known start pose "
+                   "in the merged frame (default sigmas 0.5 m, 0.1745 rad; repeatable)")
+      ->allow_extra_args(false);
   merge_app
       ->add_option("--tf-parent", merge.tf_parent_frame,
                    "with --out: parent frame of the transforms written (transforms.launch*)")
@@ -119,8 +129,10 @@ int main(int argc, char** argv) {
   extract_app->add_option("bags", extract.bags, "ROS 1 .bag files, ROS 2 bag folders, .db3, .mcap")
       ->required();
   extract_app->add_option("--out", extract.out_dir, "output folder")->required();
-  extract_app->add_option("--topic", extract.topics,
-                          "only these nav_msgs/OccupancyGrid topics (repeatable)");
+  extract_app
+      ->add_option("--topic", extract.topics,
+                   "only these nav_msgs/OccupancyGrid topics (repeatable)")
+      ->allow_extra_args(false);
 
   ExampleCommand example;
   CLI::App* example_app = app.add_subcommand(

@@ -351,6 +351,20 @@ TEST_F(MergeCliTest, FixedAndInitialPoseOptionsPlaceTheMaps) {
             json({kDefaultPriorTranslationSigmaM, kDefaultPriorYawSigmaRad}));
 }
 
+TEST_F(MergeCliTest, RepeatableOptionsBeforeTheMapsTakeOneValueEach) {
+  // CLI11 lets a vector option take every word after it unless told otherwise: robot_a.yaml
+  // would become a value of --fixed.
+  const fs::path out = testing::MakeTempDir("merge_option_order") / "out";
+  const auto run =
+      Fleetmerge("merge --quiet --out " + ShellQuote(out) +
+                 " --initial-pose robot_b=0,0,0,100,3 --fixed robot_a" + Maps({A(), B()}));
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  const json report = ReadJson(out / "report.json");
+  ASSERT_EQ(report["maps"].size(), 2u) << report;
+  EXPECT_EQ(MapNamed(report, "robot_a")["placed_by"], "fixed");
+  EXPECT_EQ(MapNamed(report, "robot_b")["placed_by"], "pairs");
+}
+
 TEST_F(MergeCliTest, AStartPoseFiveMetresOffRefusesThePairNamingIt) {
   const fs::path out = testing::MakeTempDir("merge_wrong_prior") / "out";
   const Pose2 wrong = Pose2(5.0, 0.0, 0.0) * T_a_b_;
