@@ -142,7 +142,7 @@ double Violation(const PoseGraphEdge& edge, const std::vector<std::optional<Pose
 // Solve with the last solve's answer kept: a fix that rejects an edge without a replacement
 // leaves the next round the very problem it solved without that edge (the same accepted edges,
 // reference and frame), and the last round's problem is the final one. Solving is deterministic,
-// so the kept poses are the ones solving again would give (100 robots: 35 fixes, a solve ~16 ms).
+// so the kept poses are the ones solving again would give (docs/speed.md, the fleet graph).
 class Solver {
  public:
   Solver(int map_count, const PoseGraphOptions& options, const Known& known)
@@ -279,8 +279,7 @@ void ResolveTriangleConflicts(int map_count, std::vector<PairOutcome>& pairs,
   AcceptedEdges edges(map_count, pairs);
   // Each accepted pair's contradicting minus supporting triangles. The triangles of pair a-b
   // are a-c-b, so a change of edge x-y changes the votes of the pairs with an end at x or y
-  // only: those are counted again after each round, not all pairs (100 robots: 35 rounds of
-  // 3000 pairs x 100 maps).
+  // only: those are counted again after each round, not every pair against every map.
   std::vector<int> margins(pairs.size(), 0);
   const auto count_margin = [&](std::size_t k) {
     const PairOutcome& p = pairs[k];
