@@ -36,7 +36,7 @@ struct AlignmentTarget {
 struct LocalAlignmentResult {
   Pose2 T_ga_gb;           // refined, cell units
   double cost = 0.0;       // final robust cost per point
-  bool converged = false;  // Ceres reported a usable solution
+  bool converged = false;  // the solver ended at a finite pose and cost
 };
 
 LocalAlignmentResult RefineAlignment(const AlignmentTarget& a, const AlignmentTarget& b,
