@@ -57,6 +57,11 @@ Sha256Digest PairOptionsDigest(const PairOptions& o, const std::string& version)
   // options it holds) must be added here, or caches would return another setting's pairs.
   const HypothesisOptions& h = o.hypotheses;
   std::string bytes = "fleetmerge " + version + "\n";
+  // Builds between releases share a version: a code change that alters any pair's hypotheses
+  // (not only their speed) bumps this, so that a cache never mixes the two builds' pairs.
+  // 2: the refinement solved with ceres::TinySolver (refine/local_alignment.cpp).
+  constexpr int kPairResultsRevision = 2;
+  AppendField(bytes, "pair_results_revision", kPairResultsRevision);
   AppendField(bytes, "hough.n_theta", h.hough.n_theta);
   AppendField(bytes, "hough.rho_step_cells", h.hough.rho_step_cells);
   AppendSampling(bytes, "hough_sampling", h.hough_sampling);
