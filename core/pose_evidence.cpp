@@ -2,6 +2,7 @@
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -21,21 +22,22 @@ constexpr double kCellsPerObservation = 9.0;
 // The chance pose for walls: the hypothesis this many cells off along each axis (4 poses).
 constexpr double kChanceShiftCells = 4.0;
 
-// The share of `from`'s walls near `onto`'s walls when the pose is kChanceShiftCells off. The
-// rotation search has already aligned the walls' directions, so walls meet walls far more often
-// than the map's near-wall share says (along a corridor, always); a wrong translation in a
-// repetitive building then scores walls on walls "by chance" at this rate, not at that share.
-// Falls back to the share when no shifted pose lands a wall on a known cell.
-double ChanceWallRate(const OccupancyGrid& onto, const cv::Mat1b& onto_near_walls,
-                      double onto_near_wall_share, const std::vector<Eigen::Vector2f>& from,
-                      const Pose2& T_onto_from) {
+// The chance poses for walls: the hypothesis kChanceShiftCells off along each axis.
+const std::array<Eigen::Vector2d, 4> kChanceShifts = {
+    Eigen::Vector2d(kChanceShiftCells, 0.0), Eigen::Vector2d(-kChanceShiftCells, 0.0),
+    Eigen::Vector2d(0.0, kChanceShiftCells), Eigen::Vector2d(0.0, -kChanceShiftCells)};
+
+// The share of `from`'s walls near `onto`'s walls when the pose is kChanceShiftCells off
+// (elements 1-4 of CountWallsAndShifted). The rotation search has already aligned the walls'
+// directions, so walls meet walls far more often than the map's near-wall share says (along a
+// corridor, always); a wrong translation in a repetitive building then scores walls on walls
+// "by chance" at this rate, not at that share. Falls back to the share when no shifted pose
+// lands a wall on a known cell.
+double ChanceWallRate(const std::array<WallCount, 5>& counts, double onto_near_wall_share) {
   long near = 0, judged = 0;
-  for (const Eigen::Vector2d& shift :
-       {Eigen::Vector2d(kChanceShiftCells, 0.0), Eigen::Vector2d(-kChanceShiftCells, 0.0),
-        Eigen::Vector2d(0.0, kChanceShiftCells), Eigen::Vector2d(0.0, -kChanceShiftCells)}) {
-    const WallCount c = CountWalls(onto, onto_near_walls, from, Pose2(shift, 0.0) * T_onto_from);
-    near += c.near_wall;
-    judged += c.on_known;
+  for (std::size_t k = 1; k < counts.size(); ++k) {
+    near += counts[k].near_wall;
+    judged += counts[k].on_known;
   }
   return judged < kMinWallsJudged ? onto_near_wall_share : double(near) / double(judged);
 }
@@ -48,17 +50,28 @@ double LogRatio(double hits, double trials, double q, double p) {
   return hits * std::log(q / p) + (trials - hits) * std::log((1.0 - q) / (1.0 - p));
 }
 
-// The walls of each map on the other's known cells under h (sets h.wall_agreement).
+// The walls of each map on the other's known cells under h (sets h.wall_agreement); with
+// `chance`, also under the chance poses (elements 1-4).
 struct WallCounts {
-  WallCount b_on_a, a_on_b;
+  std::array<WallCount, 5> b_on_a, a_on_b;
 };
-WallCounts CountBothWays(const MapFeatures& a, const MapFeatures& b, CellHypothesis& h) {
-  WallCounts c{CountWalls(a.grid, a.near_walls, b.occupied, h.T_ga_gb),
-               CountWalls(b.grid, b.near_walls, a.occupied, h.T_ga_gb.inverse())};
-  h.wall_agreement = std::min(c.b_on_a.share(), c.a_on_b.share());  // SymmetricWallAgreement
+WallCounts CountBothWays(const MapFeatures& a, const MapFeatures& b, CellHypothesis& h,
+                         bool chance) {
+  WallCounts c{};
+  const Pose2 T_gb_ga = h.T_ga_gb.inverse();
+  if (chance) {
+    c.b_on_a = CountWallsAndShifted(a.grid, a.near_walls, b.occupied, h.T_ga_gb, kChanceShifts);
+    c.a_on_b = CountWallsAndShifted(b.grid, b.near_walls, a.occupied, T_gb_ga, kChanceShifts);
+  } else {
+    c.b_on_a[0] = CountWalls(a.grid, a.near_walls, b.occupied, h.T_ga_gb);
+    c.a_on_b[0] = CountWalls(b.grid, b.near_walls, a.occupied, T_gb_ga);
+  }
+  // SymmetricWallAgreement
+  h.wall_agreement = std::min(c.b_on_a[0].share(), c.a_on_b[0].share());
   return c;
 }
 
+// `walls` with the chance poses' counts.
 double Evidence(const MapFeatures& a, const MapFeatures& b, const CellHypothesis& h,
                 const WallCounts& walls) {
   const double o_a = a.occupied_share, o_b = b.occupied_share;
@@ -66,18 +79,17 @@ double Evidence(const MapFeatures& a, const MapFeatures& b, const CellHypothesis
   const double overlap = static_cast<double>(h.overlap_cells);
   const double nats =
       LogRatio(h.omega * overlap, overlap, kRightCellAgreement, chance_cell_agreement) +
-      LogRatio(walls.b_on_a.near_wall, walls.b_on_a.on_known, kRightWallAgreement,
-               ChanceWallRate(a.grid, a.near_walls, a.near_wall_share, b.occupied, h.T_ga_gb)) +
-      LogRatio(
-          walls.a_on_b.near_wall, walls.a_on_b.on_known, kRightWallAgreement,
-          ChanceWallRate(b.grid, b.near_walls, b.near_wall_share, a.occupied, h.T_ga_gb.inverse()));
+      LogRatio(walls.b_on_a[0].near_wall, walls.b_on_a[0].on_known, kRightWallAgreement,
+               ChanceWallRate(walls.b_on_a, a.near_wall_share)) +
+      LogRatio(walls.a_on_b[0].near_wall, walls.a_on_b[0].on_known, kRightWallAgreement,
+               ChanceWallRate(walls.a_on_b, b.near_wall_share));
   return nats / kCellsPerObservation;
 }
 
 }  // namespace
 
 double MeasureEvidence(const MapFeatures& a, const MapFeatures& b, CellHypothesis& h) {
-  return Evidence(a, b, h, CountBothWays(a, b, h));
+  return Evidence(a, b, h, CountBothWays(a, b, h, /*chance=*/true));
 }
 
 RankedHypotheses RankByEvidence(const MapFeatures& a, const MapFeatures& b,
@@ -97,9 +109,10 @@ RankedHypotheses RankByEvidence(const MapFeatures& a, const MapFeatures& b,
   // four wall counts each way); every hypothesis gets its wall agreement.
   const std::size_t measured = std::max<std::size_t>(tied_end - sorted.begin(), 2);
   ParallelFor(sorted.size(), threads, [&](std::size_t k) {
-    const WallCounts walls = CountBothWays(a, b, sorted[k]);
+    const bool measure = k < measured;
+    const WallCounts walls = CountBothWays(a, b, sorted[k], /*chance=*/measure);
     sorted[k].evidence_nats =
-        k < measured ? Evidence(a, b, sorted[k], walls) : std::numeric_limits<double>::quiet_NaN();
+        measure ? Evidence(a, b, sorted[k], walls) : std::numeric_limits<double>::quiet_NaN();
   });
   std::stable_sort(sorted.begin(), tied_end, [](const CellHypothesis& l, const CellHypothesis& r) {
     return l.evidence_nats > r.evidence_nats;

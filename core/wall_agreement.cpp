@@ -21,26 +21,37 @@ double WallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2
 namespace {
 
 // Counts b's walls (cell centres p_b, in b's grid frame) that land on a's known cells, and of
-// those the ones near a's walls.
+// those the ones near a's walls, under K poses that share the rotation R and have the
+// translations t[k]: p = t[k] + R p_b.
+template <std::size_t K, typename ForEachWall>
+std::array<WallCount, K> CountWallsOnWalls(const OccupancyGrid& a, const cv::Mat1b& near_wall,
+                                           const Eigen::Matrix2d& R,
+                                           const std::array<Eigen::Vector2d, K>& t,
+                                           const ForEachWall& for_each_wall) {
+  const auto unknown = static_cast<std::uint8_t>(CellState::kUnknown);
+  std::array<WallCount, K> count{};
+  for_each_wall([&](const Eigen::Vector2d& p_b) {
+    const Eigen::Vector2d R_p_b = R * p_b;
+    for (std::size_t k = 0; k < K; ++k) {
+      const Eigen::Vector2d p = t[k] + R_p_b;
+      const int ia = static_cast<int>(std::floor(p.x()));
+      const int ja = static_cast<int>(std::floor(p.y()));
+      if (ia < 0 || ja < 0 || ia >= a.width() || ja >= a.height()) continue;
+      if (a.cells()(ja, ia) == unknown) continue;
+      ++count[k].on_known;
+      count[k].near_wall += near_wall(ja, ia) != 0;
+    }
+  });
+  return count;
+}
+
+// One pose. Pose2 * point takes a sine and a cosine each time: once here, not once per wall cell
+// (they were a fifth of a pair's time). The same arithmetic as Pose2's, so the same cells.
 template <typename ForEachWall>
 WallCount CountWallsOnWalls(const OccupancyGrid& a, const cv::Mat1b& near_wall,
                             const Pose2& T_ga_gb, const ForEachWall& for_each_wall) {
-  const auto unknown = static_cast<std::uint8_t>(CellState::kUnknown);
-  WallCount count;
-  // Pose2 * point takes a sine and a cosine each time: once here, not once per wall cell (they
-  // were a fifth of a pair's time). The same arithmetic as Pose2's, so the same cells.
-  const Eigen::Matrix2d R = T_ga_gb.rotation();
-  const Eigen::Vector2d t = T_ga_gb.translation_m();
-  for_each_wall([&](const Eigen::Vector2d& p_b) {
-    const Eigen::Vector2d p = t + R * p_b;
-    const int ia = static_cast<int>(std::floor(p.x()));
-    const int ja = static_cast<int>(std::floor(p.y()));
-    if (ia < 0 || ja < 0 || ia >= a.width() || ja >= a.height()) return;
-    if (a.cells()(ja, ia) == unknown) return;
-    ++count.on_known;
-    count.near_wall += near_wall(ja, ia) != 0;
-  });
-  return count;
+  return CountWallsOnWalls<1>(a, near_wall, T_ga_gb.rotation(), {T_ga_gb.translation_m()},
+                              for_each_wall)[0];
 }
 
 }  // namespace
@@ -64,6 +75,22 @@ WallCount CountWalls(const OccupancyGrid& a, const cv::Mat1b& near_wall,
                      const std::vector<Eigen::Vector2f>& b_wall_centres, const Pose2& T_ga_gb) {
   // Centres i + 0.5 are exact in float (cells < 2^23), so the cast gives WallAgreement's points.
   return CountWallsOnWalls(a, near_wall, T_ga_gb, [&](const auto& visit) {
+    for (const Eigen::Vector2f& c : b_wall_centres) visit(c.cast<double>());
+  });
+}
+
+std::array<WallCount, 5> CountWallsAndShifted(const OccupancyGrid& a, const cv::Mat1b& near_wall,
+                                              const std::vector<Eigen::Vector2f>& b_wall_centres,
+                                              const Pose2& T_ga_gb,
+                                              const std::array<Eigen::Vector2d, 4>& shifts_cells) {
+  // Pose2(shift, 0) * T has T's yaw and the translation shift + I t, which is shift + t exactly
+  // (the identity's products are t's coordinates and signed zeros).
+  std::array<Eigen::Vector2d, 5> t;
+  t[0] = T_ga_gb.translation_m();
+  for (std::size_t k = 0; k < shifts_cells.size(); ++k) {
+    t[k + 1] = (Pose2(shifts_cells[k], 0.0) * T_ga_gb).translation_m();
+  }
+  return CountWallsOnWalls<5>(a, near_wall, T_ga_gb.rotation(), t, [&](const auto& visit) {
     for (const Eigen::Vector2f& c : b_wall_centres) visit(c.cast<double>());
   });
 }

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -18,23 +19,27 @@
 namespace fleetmerge {
 namespace {
 
-double OracleWallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb) {
-  long on_known = 0, on_wall = 0;
+WallCount OracleWallCount(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb) {
+  WallCount count;
   for (const Eigen::Array2i& cell : b.CellsIn(CellState::kOccupied)) {
     const Eigen::Vector2d p = T_ga_gb * Eigen::Vector2d(cell.x() + 0.5, cell.y() + 0.5);
     const Eigen::Array2i in_a(static_cast<int>(std::floor(p.x())),
                               static_cast<int>(std::floor(p.y())));
     if (a.StateOrUnknown(in_a) == CellState::kUnknown) continue;
-    ++on_known;
+    ++count.on_known;
     bool near = false;
     for (int dy = -1; dy <= 1; ++dy) {
       for (int dx = -1; dx <= 1; ++dx) {
         near |= a.StateOrUnknown(in_a + Eigen::Array2i(dx, dy)) == CellState::kOccupied;
       }
     }
-    on_wall += near;
+    count.near_wall += near;
   }
-  return on_known < kMinWallsJudged ? 0.0 : double(on_wall) / double(on_known);
+  return count;
+}
+
+double OracleWallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb) {
+  return OracleWallCount(a, b, T_ga_gb).share();
 }
 
 TEST(WallAgreement, AllFormsMatchTheDefinitionAtTrueAndWrongPoses) {
@@ -70,6 +75,44 @@ TEST(WallAgreement, AllFormsMatchTheDefinitionAtTrueAndWrongPoses) {
   EXPECT_GT(judged, 20);
   EXPECT_GT(low, 5);
   EXPECT_GE(high, 1);
+}
+
+// CountWallsAndShifted's five counts in one pass against the oracle at each pose: the chance
+// shifts the evidence uses (4 cells along a's axes) and uneven ones, around true and wrong poses.
+TEST(WallAgreement, ShiftedCountsMatchTheDefinitionAtEachShiftedPose) {
+  OfficeOptions office;
+  office.width_m = 30.0;
+  office.height_m = 20.0;
+  const OccupancyGrid building = GenerateOfficeFloor(office, 4);
+  std::mt19937 rng(12);
+  const GroundTruthPair pair = CutPair(building, 0.7, rng);
+  const Pose2 T_true = CellPoseFromMapPose(pair.a.geometry(), pair.b.geometry(), pair.T_a_b);
+  const MapWalls walls_a(pair.a);
+  const std::vector<Eigen::Vector2f> b_centres = OccupiedCellCenters(pair.b);
+  const std::array<std::array<Eigen::Vector2d, 4>, 2> shift_sets = {{
+      {Eigen::Vector2d(4.0, 0.0), Eigen::Vector2d(-4.0, 0.0), Eigen::Vector2d(0.0, 4.0),
+       Eigen::Vector2d(0.0, -4.0)},
+      {Eigen::Vector2d(2.5, -1.25), Eigen::Vector2d(-7.0, 3.0), Eigen::Vector2d(0.3, 0.0),
+       Eigen::Vector2d(-0.5, -9.75)},
+  }};
+  std::normal_distribution<double> shift_cells(0.0, 10.0), turn_rad(0.0, 0.2);
+  long judged = 0;
+  for (int k = 0; k < 10; ++k) {
+    const Pose2 T =
+        k == 0 ? T_true : T_true * Pose2(shift_cells(rng), shift_cells(rng), turn_rad(rng));
+    for (const auto& shifts : shift_sets) {
+      const std::array<WallCount, 5> got =
+          CountWallsAndShifted(pair.a, walls_a.near_walls, b_centres, T, shifts);
+      for (int s = 0; s < 5; ++s) {
+        const Pose2 T_s = s == 0 ? T : Pose2(shifts[s - 1], 0.0) * T;
+        const WallCount want = OracleWallCount(pair.a, pair.b, T_s);
+        EXPECT_EQ(got[s].on_known, want.on_known) << k << " " << s;
+        EXPECT_EQ(got[s].near_wall, want.near_wall) << k << " " << s;
+        judged += want.on_known;
+      }
+    }
+  }
+  EXPECT_GT(judged, 1000);  // the poses put walls on a's known cells
 }
 
 }  // namespace
