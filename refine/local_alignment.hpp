@@ -4,7 +4,8 @@
 // to a few cells. Starting there, we minimise over T = T_ga_gb (cells)
 //   sum_p rho( D_a(T p) )  +  sum_q rho( D_b(T^-1 q) )
 // where p are b's wall cells, q are a's wall cells, D_x is x's truncated wall distance field and
-// rho a Cauchy loss: a symmetric, robust chamfer alignment solved with Ceres.
+// rho a Cauchy loss: a symmetric, robust chamfer alignment solved by Levenberg-Marquardt (Ceres'
+// TinySolver).
 #pragma once
 
 #include <Eigen/Core>

@@ -1,6 +1,6 @@
 // Distance from every cell to the nearest occupied cell of a map, truncated, with bicubic
-// interpolation for Ceres: the target a map's walls are pulled onto in local refinement.
-// Built once per map and shared by all the pairs that map is part of.
+// interpolation (Ceres' BiCubicInterpolator): the target a map's walls are pulled onto in local
+// refinement. Built once per map and shared by all the pairs that map is part of.
 #pragma once
 
 #include <ceres/cubic_interpolation.h>
