@@ -12,6 +12,7 @@
 #include "cli/merge_command.hpp"
 #include "cli/pair_command.hpp"
 #include "cli/process_memory.hpp"
+#include "cli/process_threads.hpp"
 #include "cli/simulate_command.hpp"
 #include "core/error.hpp"
 #include "fleetmerge/version.hpp"  // generated from project(VERSION) (api/CMakeLists.txt)
@@ -19,6 +20,7 @@
 int main(int argc, char** argv) {
   using namespace fleetmerge;
   KeepFreedMemoryForReuse();
+  RunOpenCvOnTheCallingThread();
   CLI::App app{
       "fleetmerge: merge the occupancy grid maps of a robot fleet (Carpin's Hough-spectrum "
       "method)"};

@@ -13,6 +13,7 @@
 
 #include "cli/merge_command.hpp"
 #include "cli/process_memory.hpp"
+#include "cli/process_threads.hpp"
 #include "io/map_io.hpp"
 #include "job/job.hpp"
 #include "sim/ground_truth_pair.hpp"
@@ -67,9 +68,11 @@ BENCHMARK(BM_MergeEightMaps)->Arg(2)->Arg(1)->Unit(benchmark::kMillisecond)->Use
 }  // namespace
 }  // namespace fleetmerge
 
-// As `fleetmerge merge` runs: the executable's allocator settings (cli/process_memory.hpp).
+// As `fleetmerge merge` runs: the executable's allocator and thread settings
+// (cli/process_memory.hpp, cli/process_threads.hpp).
 int main(int argc, char** argv) {
   fleetmerge::KeepFreedMemoryForReuse();
+  fleetmerge::RunOpenCvOnTheCallingThread();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();
