@@ -57,8 +57,19 @@ std::string ReadLockText(int fd) {
   return text;
 }
 
-std::string DescribeHolder(const std::string& text, const fs::path& lock_path) {
-  const std::optional<FolderLockHolder> holder = ParseFolderLockFile(text);
+// The holder through `fd`. A holder writes its lines just after it takes the lock, so a file
+// read in between is empty (or half written): text that names no holder is read again for up to
+// kHolderWriteGrace before it is reported as saying nothing (runs started at once into one
+// folder otherwise now and then reported "does not say which" for a holder that was a run).
+constexpr auto kHolderWriteGrace = std::chrono::milliseconds(100);
+constexpr auto kHolderReread = std::chrono::milliseconds(2);
+std::string DescribeHolder(int fd, const fs::path& lock_path) {
+  const auto until = std::chrono::steady_clock::now() + kHolderWriteGrace;
+  std::optional<FolderLockHolder> holder = ParseFolderLockFile(ReadLockText(fd));
+  while (!holder && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(kHolderReread);
+    holder = ParseFolderLockFile(ReadLockText(fd));
+  }
   if (!holder) {
     return "another process (its lock file " + lock_path.string() + " does not say which)";
   }
@@ -153,7 +164,7 @@ FolderLock::FolderLock(const fs::path& folder, const std::string& job, double wa
       throw Error(path_.string() + ": cannot lock " + label + " " + folder_name + ": " +
                   std::strerror(error));
     }
-    const std::string holder = DescribeHolder(ReadLockText(fd), path_);
+    const std::string holder = DescribeHolder(fd, path_);
     ::close(fd);
     const auto now = std::chrono::steady_clock::now();
     if (now >= deadline) {

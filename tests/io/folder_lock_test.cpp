@@ -3,8 +3,10 @@
 // ResultFolder holds its output folder's lock while it exists.
 #include "io/folder_lock.hpp"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -182,6 +184,29 @@ TEST(FolderLock, HeldLockWithGarbageContentStillBlocks) {
   const std::string error = ErrorOf([&] { FolderLock second(dir / "out", "job 'second'", 0); });
   EXPECT_NE(error.find("is in use by another process (its lock file " + first.path().string() +
                        " does not say which)"),
+            std::string::npos)
+      << error;
+}
+
+// A holder writes its lines just after it takes the lock; a waiter that reads the file in
+// between still names it (it reads again for a moment), rather than "does not say which".
+TEST(FolderLock, HolderThatWritesItsLinesJustAfterLockingIsNamed) {
+  const fs::path dir = ft::MakeTempDir("folder_lock_late_lines");
+  const fs::path lock_file = FolderLockPath(dir / "out");
+  const int fd = open(lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);  // locked, still empty
+  std::thread holder([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    const std::string text = "fleetmerge folder lock v1\npid: " + std::to_string(getpid()) +
+                             "\nhost: " + HostName() +
+                             "\nsince: 2026-12-03T00:00:00Z\njob: job 'late'\n";
+    (void)!pwrite(fd, text.data(), text.size(), 0);
+  });
+  const std::string error = ErrorOf([&] { FolderLock second(dir / "out", "job 'second'", 0); });
+  holder.join();
+  close(fd);
+  EXPECT_NE(error.find("is in use by job 'late' (pid " + std::to_string(getpid())),
             std::string::npos)
       << error;
 }
