@@ -8,9 +8,9 @@ namespace fleetmerge {
 // Debian's OpenCV runs some functions (cv::LUT on every map loaded, cv::compare, ...) on a TBB
 // pool of its own, one worker per core, on top of the pipeline's threads. Starting that pool
 // loads TBB's allocator and reads /proc at the first such call, and its workers then compete
-// with the pipeline's: with OpenCV on the calling thread (cv::setNumThreads(0)) the 8-robot
-// ACES job took 541 ms against 558 ms and `fleetmerge pair` 57.8 ms against 59.3 ms
-// (interleaved medians, docs/speed.md), with the same outputs byte for byte.
+// with the pipeline's. With OpenCV on the calling thread (cv::setNumThreads(0)) the outputs are
+// the same byte for byte and the 8-robot ACES job and `fleetmerge pair` are faster
+// (docs/speed.md, "How the work is shared").
 void RunOpenCvOnTheCallingThread();
 
 }  // namespace fleetmerge
