@@ -5,7 +5,7 @@
 
 namespace fleetmerge {
 
-// Debian's OpenCV runs some functions (cv::LUT on every map loaded, cv::compare, ...) on a TBB
+// Debian's OpenCV runs some functions (cv::LUT on every map loaded, among others) on a TBB
 // pool of its own, one worker per core, on top of the pipeline's threads. Starting that pool
 // loads TBB's allocator and reads /proc at the first such call, and its workers then compete
 // with the pipeline's. With OpenCV on the calling thread (cv::setNumThreads(0)) the outputs are
