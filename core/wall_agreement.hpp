@@ -47,8 +47,8 @@ struct WallCount {
 WallCount CountWalls(const OccupancyGrid& a, const cv::Mat1b& a_near_walls,
                      const std::vector<Eigen::Vector2f>& b_wall_centres, const Pose2& T_ga_gb);
 
-// CountWalls at T_ga_gb and at T_ga_gb moved by whole cells along a's axes, in one pass over
-// b's walls: element 0 is CountWalls(..., T_ga_gb), element k >= 1 is CountWalls(...,
+// CountWalls at T_ga_gb and at T_ga_gb translated along a's axes by each of shifts_cells, in one
+// pass over b's walls: element 0 is CountWalls(..., T_ga_gb), element k >= 1 is CountWalls(...,
 // Pose2(shifts_cells[k - 1], 0) * T_ga_gb), the same counts (each wall is rotated once, and
 // each pose's translation added as Pose2's composition computes it).
 std::array<WallCount, 5> CountWallsAndShifted(const OccupancyGrid& a, const cv::Mat1b& a_near_walls,
