@@ -19,20 +19,19 @@ constexpr double kRightCellAgreement = 0.99;
 constexpr double kRightWallAgreement = 0.98;
 // Cells of a 3 x 3 neighbourhood: one roughly independent observation.
 constexpr double kCellsPerObservation = 9.0;
-// The chance pose for walls: the hypothesis this many cells off along each axis (4 poses).
+// The chance poses for walls: the hypothesis this many cells off along each axis of the grid
+// the walls land on.
 constexpr double kChanceShiftCells = 4.0;
-
-// The chance poses for walls: the hypothesis kChanceShiftCells off along each axis.
 const std::array<Eigen::Vector2d, 4> kChanceShifts = {
     Eigen::Vector2d(kChanceShiftCells, 0.0), Eigen::Vector2d(-kChanceShiftCells, 0.0),
     Eigen::Vector2d(0.0, kChanceShiftCells), Eigen::Vector2d(0.0, -kChanceShiftCells)};
 
-// The share of `from`'s walls near `onto`'s walls when the pose is kChanceShiftCells off
-// (elements 1-4 of CountWallsAndShifted). The rotation search has already aligned the walls'
-// directions, so walls meet walls far more often than the map's near-wall share says (along a
-// corridor, always); a wrong translation in a repetitive building then scores walls on walls
-// "by chance" at this rate, not at that share. Falls back to the share when no shifted pose
-// lands a wall on a known cell.
+// The share of `from`'s walls near `onto`'s walls at the chance poses (elements 1-4 of
+// CountWallsAndShifted(onto, ..., from, T_onto_from, kChanceShifts)). The rotation search has
+// already aligned the walls' directions, so walls meet walls far more often than the map's
+// near-wall share says (along a corridor, always); a wrong translation in a repetitive building
+// then scores walls on walls "by chance" at this rate, not at that share. Falls back to the share
+// when no shifted pose lands a wall on a known cell.
 double ChanceWallRate(const std::array<WallCount, 5>& counts, double onto_near_wall_share) {
   long near = 0, judged = 0;
   for (std::size_t k = 1; k < counts.size(); ++k) {
