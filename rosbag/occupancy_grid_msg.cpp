@@ -142,6 +142,11 @@ OccupancyGrid OccupancyGridFromMsg(const OccupancyGridMsg& msg, const std::strin
       << " cells, expected width x height = " << msg.width << " x " << msg.height << " = " << cells;
     throw Error(m.str());
   }
+  if (cells == 0) {  // consistent, but not a map: nothing downstream has a cell to work on
+    m << context << ": info.width x info.height is " << msg.width << " x " << msg.height
+      << ": the map has no cells";
+    throw Error(m.str());
+  }
   if (msg.width > 0x7fffffffu || msg.height > 0x7fffffffu ||
       cells > static_cast<std::uint64_t>(max_cells)) {
     m << context << ": " << msg.width << " x " << msg.height << " cells is more than the limit of "

@@ -404,6 +404,11 @@ def add_bag_cases():
     bag_case("bag_nan_resolution", {"robot.bag": ros1_bag(nan_resolution)},
              "topic /map: info.resolution is nan")
 
+    def no_cells(bag):  # a consistent message (0 x 3 cells, no data) that holds no map
+        bag.write("/map", grid(0, 3, cells=[]), at(1))
+    bag_case("bag_grid_without_cells", {"robot.bag": ros1_bag(no_cells)},
+             "topic /map: info.width x info.height is 0 x 3: the map has no cells")
+
     def huge(bag):  # 1e9 cells claimed; the message holds 12
         bag.write("/map", grid(100000, 10000, cells=[0] * 12), at(1))
     bag_case("bag_grid_size_lies", {"robot.bag": ros1_bag(huge)}, "data has 12 cells")
