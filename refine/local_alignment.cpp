@@ -13,9 +13,9 @@ namespace {
 
 // Both directions' wall points as one residual vector, with analytic derivatives, for
 // ceres::TinySolver: three parameters and a few thousand residuals. Ceres' general solver spent
-// as long on its per-residual bookkeeping (validity checks, Jacobian copies and scaling, a QR of
-// the N x 3 Jacobian) as on the residuals themselves; TinySolver solves the 3 x 3 normal
-// equations.
+// about half as long again on its per-residual bookkeeping (validity checks, Jacobian copies and
+// scaling, a QR of the N x 3 Jacobian) as on the residuals themselves (docs/speed.md);
+// TinySolver solves the 3 x 3 normal equations.
 //
 // The Cauchy loss is folded into the residuals: r_i = sign(d_i) sqrt(rho(d_i^2)), so that
 // 1/2 sum r_i^2 = 1/2 sum rho(d_i^2) is the robust cost of the per-point formulation, with
