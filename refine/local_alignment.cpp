@@ -13,7 +13,7 @@ namespace {
 
 // Both directions' wall points as one residual vector, with analytic derivatives, for
 // ceres::TinySolver: three parameters and a few thousand residuals. Ceres' general solver spent
-// about half as long again on its per-residual bookkeeping (validity checks, Jacobian copies and
+// about half as long on its per-residual bookkeeping (validity checks, Jacobian copies and
 // scaling, a QR of the N x 3 Jacobian) as on the residuals themselves (docs/speed.md);
 // TinySolver solves the 3 x 3 normal equations.
 //
