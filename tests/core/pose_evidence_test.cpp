@@ -11,8 +11,7 @@
 
 #include "core/acceptance_index.hpp"
 #include "core/wall_agreement.hpp"
-#include "sim/ground_truth_pair.hpp"
-#include "sim/synthetic_office.hpp"
+#include "tests/support/office_pair.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -90,12 +89,8 @@ CellHypothesis Hypothesis(const OccupancyGrid& a, const OccupancyGrid& b, const 
 }
 
 TEST(PoseEvidence, MatchesTheDefinitionAndPrefersTheTruePose) {
-  OfficeOptions office;
-  office.width_m = 30.0;
-  office.height_m = 20.0;
-  const OccupancyGrid building = GenerateOfficeFloor(office, 4);
   std::mt19937 rng(12);
-  const GroundTruthPair pair = CutPair(building, 0.7, rng);
+  const GroundTruthPair pair = testing::CutOfficePair(rng);
   const HypothesisOptions options;
   const MapFeatures a(pair.a, options), b(pair.b, options);
   const Pose2 T_true = CellPoseFromMapPose(pair.a.geometry(), pair.b.geometry(), pair.T_a_b);

@@ -13,8 +13,7 @@
 
 #include "core/hypothesis_generator.hpp"  // CellPoseFromMapPose
 #include "core/point_sampling.hpp"
-#include "sim/ground_truth_pair.hpp"
-#include "sim/synthetic_office.hpp"
+#include "tests/support/office_pair.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -43,12 +42,8 @@ double OracleWallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const
 }
 
 TEST(WallAgreement, AllFormsMatchTheDefinitionAtTrueAndWrongPoses) {
-  OfficeOptions office;
-  office.width_m = 30.0;
-  office.height_m = 20.0;
-  const OccupancyGrid building = GenerateOfficeFloor(office, 4);
   std::mt19937 rng(11);
-  const GroundTruthPair pair = CutPair(building, 0.7, rng);
+  const GroundTruthPair pair = testing::CutOfficePair(rng);
   const Pose2 T_true = CellPoseFromMapPose(pair.a.geometry(), pair.b.geometry(), pair.T_a_b);
   const MapWalls walls_a(pair.a), walls_b(pair.b);
   ASSERT_EQ(walls_b.centres.size(), OccupiedCellCenters(pair.b).size());
@@ -80,12 +75,8 @@ TEST(WallAgreement, AllFormsMatchTheDefinitionAtTrueAndWrongPoses) {
 // CountWallsAndShifted's five counts in one pass against the oracle at each pose: the chance
 // shifts the evidence uses (4 cells along a's axes) and uneven ones, around true and wrong poses.
 TEST(WallAgreement, ShiftedCountsMatchTheDefinitionAtEachShiftedPose) {
-  OfficeOptions office;
-  office.width_m = 30.0;
-  office.height_m = 20.0;
-  const OccupancyGrid building = GenerateOfficeFloor(office, 4);
   std::mt19937 rng(12);
-  const GroundTruthPair pair = CutPair(building, 0.7, rng);
+  const GroundTruthPair pair = testing::CutOfficePair(rng);
   const Pose2 T_true = CellPoseFromMapPose(pair.a.geometry(), pair.b.geometry(), pair.T_a_b);
   const MapWalls walls_a(pair.a);
   const std::vector<Eigen::Vector2f> b_centres = OccupiedCellCenters(pair.b);
