@@ -300,15 +300,13 @@ MergeResult Merge(const std::vector<Map>& maps, const Options& options,
     l.metadata.resolution_m = maps[m].resolution();
     loaded.push_back(std::move(l));
   }
-  const auto first_fixed =
-      std::find_if(job.maps.begin(), job.maps.end(), [](const JobMap& m) { return m.fixed; });
-  const std::string& first =
-      first_fixed != job.maps.end() ? first_fixed->name : job.maps.front().name;
+  const JobMap* first_fixed = FirstFixedMap(job.maps);
+  const std::string& first = first_fixed ? first_fixed->name : job.maps.front().name;
   job.reference = options.reference.empty() ? first : options.reference;
   bool found = false;
   for (const JobMap& m : job.maps) found = found || m.name == job.reference;
   Require(found, "reference '" + job.reference + "' is not one of the maps' names");
-  Require(first_fixed == job.maps.end() || job.reference == first,
+  Require(!first_fixed || job.reference == first,
           "reference '" + job.reference + "': with fixed maps it must be the first fixed map '" +
               first + "'");
   JobRunOptions run;

@@ -207,11 +207,7 @@ Job JobFromMapList(const MergeCommand& command) {
     }
     map.prior = prior;
   }
-  // With fixed maps the merged frame is theirs: the first fixed map is the reference (as in a
-  // job file).
-  const auto first_fixed =
-      std::find_if(job.maps.begin(), job.maps.end(), [](const JobMap& map) { return map.fixed; });
-  if (first_fixed != job.maps.end()) {
+  if (const JobMap* first_fixed = FirstFixedMap(job.maps)) {
     if (command.reference && *command.reference != first_fixed->name) {
       throw Error("--reference '" + *command.reference + "': with fixed maps the reference is " +
                   "the first fixed map, '" + first_fixed->name + "'; leave --reference out");

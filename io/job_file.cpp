@@ -350,16 +350,14 @@ std::vector<JobMap> ReadMaps(const YamlField& field, const fs::path& folder,
 
 std::string ReadReference(const YamlMapping& job, const std::vector<JobMap>& maps,
                           const YamlErrors& errors) {
-  // With fixed maps the merged frame is theirs: the first fixed map is the reference.
-  const auto first_fixed =
-      std::find_if(maps.begin(), maps.end(), [](const JobMap& map) { return map.fixed; });
+  const JobMap* first_fixed = FirstFixedMap(maps);
   const std::optional<YamlField> field = job.Find("reference");
-  if (!field) return first_fixed != maps.end() ? first_fixed->name : maps.front().name;
+  if (!field) return first_fixed ? first_fixed->name : maps.front().name;
   std::vector<std::string> names;
   for (const JobMap& map : maps) names.push_back("'" + map.name + "'");
   const std::string expected = "the name of one of the job's maps (" + JoinWords(names) + ")";
   const std::string reference = ReadString(*field, expected, errors);
-  if (first_fixed != maps.end() && reference != first_fixed->name) {
+  if (first_fixed && reference != first_fixed->name) {
     FailExpected(*field,
                  "the first fixed map '" + first_fixed->name +
                      "' (with fixed maps the merged frame is theirs), or no 'reference'",

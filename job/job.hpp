@@ -37,4 +37,13 @@ struct Job {
   FleetOptions options;
 };
 
+// With fixed maps the merged frame is theirs: the reference is the first fixed map, and a job
+// (file, command line or API) may not name another. Null when no map is fixed.
+inline const JobMap* FirstFixedMap(const std::vector<JobMap>& maps) {
+  for (const JobMap& map : maps) {
+    if (map.fixed) return &map;
+  }
+  return nullptr;
+}
+
 }  // namespace fleetmerge
