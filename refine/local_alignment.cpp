@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
 
 #include "core/point_sampling.hpp"  // OccupiedCellCenters
 
