@@ -1,8 +1,11 @@
 // ParallelFor (core/parallel.hpp): every index runs exactly once, and when bodies throw the
-// error rethrown is the lowest index's, whatever the thread count and timing.
+// error rethrown is the lowest index's, whatever the thread count and timing; nested calls and
+// forked children keep working with the kept workers.
 #include "core/parallel.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -44,6 +47,39 @@ TEST(ParallelFor, RethrowsTheLowestFailingIndexAfterRunningTheRest) {
       EXPECT_EQ(ran, 40);
     }
   }
+}
+
+// Bodies that run ParallelFor themselves (a fleet's pairs, each spreading its own stages) on
+// more threads than the machine has: every inner index runs once and nothing waits for a worker
+// that waits for it.
+TEST(ParallelFor, NestedCallsRunEveryIndexOnce) {
+  for (int round = 0; round < 20; ++round) {
+    std::vector<std::atomic<int>> runs(8 * 16);
+    ParallelFor(8, 4, [&](std::size_t outer) {
+      ParallelFor(16, 3, [&](std::size_t inner) { ++runs[outer * 16 + inner]; });
+    });
+    for (std::size_t k = 0; k < runs.size(); ++k) ASSERT_EQ(runs[k], 1) << k;
+  }
+}
+
+// Workers are kept between calls; a child made by fork() has none of them and must not wait
+// for its parent's.
+TEST(ParallelFor, WorksInAForkedChildAfterThePoolStarted) {
+  std::atomic<int> sum{0};
+  ParallelFor(64, 4, [&](std::size_t k) { sum += static_cast<int>(k); });
+  ASSERT_EQ(sum, 64 * 63 / 2);
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    alarm(20);  // a child stuck waiting for a worker is killed, and the test fails
+    std::atomic<int> child_sum{0};
+    ParallelFor(64, 4, [&](std::size_t k) { child_sum += static_cast<int>(k); });
+    _exit(child_sum == 64 * 63 / 2 ? 0 : 1);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "the child did not finish (signal " << WTERMSIG(status) << ")";
+  EXPECT_EQ(WEXITSTATUS(status), 0);
 }
 
 }  // namespace
