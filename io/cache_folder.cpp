@@ -26,14 +26,14 @@ constexpr const char* kCacheDirTag =
     "# entries; it may be deleted at any time.\n";
 
 // The payload of `bytes` when it is a sound entry for `key` and `version`.
-std::optional<std::string> ParseEntry(const std::string& bytes, const Sha256Digest& key,
+std::optional<std::string> ParseEntry(const std::string& bytes, const ContentDigest& key,
                                       const std::string& version) {
-  constexpr std::size_t kChecksumSize = sizeof(Sha256Digest);
+  constexpr std::size_t kChecksumSize = sizeof(ContentDigest);
   if (bytes.size() < sizeof kMagic + kChecksumSize) return std::nullopt;
   const std::size_t body_size = bytes.size() - kChecksumSize;
-  Sha256 hash;
+  ContentHash hash;
   hash.Update(bytes.data(), body_size);
-  const Sha256Digest checksum = hash.Finish();
+  const ContentDigest checksum = hash.Finish();
   if (std::memcmp(checksum.data(), bytes.data() + body_size, kChecksumSize) != 0) {
     return std::nullopt;  // truncated, corrupt, or not an entry at all
   }
@@ -41,7 +41,7 @@ std::optional<std::string> ParseEntry(const std::string& bytes, const Sha256Dige
   char magic[sizeof kMagic];
   std::uint32_t format = 0, byte_order = 0, version_size = 0;
   std::string entry_version;
-  Sha256Digest entry_key{};
+  ContentDigest entry_key{};
   std::uint64_t payload_size = 0;
   std::string payload;
   if (!reader.Read(magic) || std::memcmp(magic, kMagic, sizeof kMagic) != 0 ||
@@ -56,22 +56,27 @@ std::optional<std::string> ParseEntry(const std::string& bytes, const Sha256Dige
   return payload;
 }
 
+constexpr std::size_t kKeyDigits = 2 * sizeof(ContentDigest);
+
 bool IsEntryName(const std::string& name) {
   const std::size_t ext = std::strlen(kEntryExtension);
-  if (name.size() != 64 + ext || name.compare(64, ext, kEntryExtension) != 0) return false;
-  return std::all_of(name.begin(), name.begin() + 64,
+  if (name.size() != kKeyDigits + ext || name.compare(kKeyDigits, ext, kEntryExtension) != 0) {
+    return false;
+  }
+  return std::all_of(name.begin(), name.begin() + kKeyDigits,
                      [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
 }
 
 // `.<entry name>.tmp.<random>`: WriteFileAtomically's temporary file of an entry.
 bool IsEntryTempName(const std::string& name) {
-  if (name.size() < 1 + 64 + 6 + 5 || name[0] != '.') return false;
-  return IsEntryName(name.substr(1, 64 + 6)) && name.compare(1 + 64 + 6, 5, ".tmp.") == 0;
+  const std::size_t entry = kKeyDigits + std::strlen(kEntryExtension);
+  if (name.size() < 1 + entry + 5 || name[0] != '.') return false;
+  return IsEntryName(name.substr(1, entry)) && name.compare(1 + entry, 5, ".tmp.") == 0;
 }
 
 }  // namespace
 
-std::string CacheEntryBytes(const Sha256Digest& key, const std::string& version,
+std::string CacheEntryBytes(const ContentDigest& key, const std::string& version,
                             const std::string& payload) {
   std::string bytes(kMagic, sizeof kMagic);
   AppendRaw(bytes, CacheFolder::kFormatVersion);
@@ -81,7 +86,7 @@ std::string CacheEntryBytes(const Sha256Digest& key, const std::string& version,
   AppendRaw(bytes, key);
   AppendRaw(bytes, static_cast<std::uint64_t>(payload.size()));
   bytes += payload;
-  AppendRaw(bytes, Sha256Of(bytes));
+  AppendRaw(bytes, ContentHashOf(bytes));
   return bytes;
 }
 
@@ -111,7 +116,7 @@ CacheFolder::CacheFolder(const fs::path& dir, const std::string& version,
   }
 }
 
-fs::path CacheFolder::EntryPath(const Sha256Digest& key) const {
+fs::path CacheFolder::EntryPath(const ContentDigest& key) const {
   return dir_ / (ToHex(key) + kEntryExtension);
 }
 
@@ -121,7 +126,7 @@ void CacheFolder::CheckLocked() const {
   if (!lock_) throw Error("internal: cache folder " + dir_.string() + " used after Unlock");
 }
 
-std::optional<std::string> CacheFolder::Read(const Sha256Digest& key) {
+std::optional<std::string> CacheFolder::Read(const ContentDigest& key) {
   CheckLocked();
   const fs::path path = EntryPath(key);
   std::ifstream in(path, std::ios::binary);
@@ -139,14 +144,14 @@ std::optional<std::string> CacheFolder::Read(const Sha256Digest& key) {
   return payload;
 }
 
-void CacheFolder::Discard(const Sha256Digest& key) {
+void CacheFolder::Discard(const ContentDigest& key) {
   CheckLocked();
   ++rejected_;
   std::error_code ec;
   fs::remove(EntryPath(key), ec);
 }
 
-void CacheFolder::Write(const Sha256Digest& key, const std::string& payload) {
+void CacheFolder::Write(const ContentDigest& key, const std::string& payload) {
   CheckLocked();
   WriteFileAtomically(EntryPath(key), CacheEntryBytes(key, version_, payload), {},
                       AtomicWrite::kNoSync);

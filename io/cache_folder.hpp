@@ -1,15 +1,15 @@
 // A folder of cache entries that re-runs share (the pair cache, pipeline/pair_cache.hpp, keeps
 // its maps' preparations and pairs' hypotheses here). Each entry is one file, `<key>.entry`,
-// named by the 64 hex digits of its key (a SHA-256 of everything its content depends on) and
-// written atomically (io/atomic_file.hpp). Its bytes:
+// named by the 32 hex digits of its key (io/content_hash.hpp: the hash of everything its content
+// depends on) and written atomically (io/atomic_file.hpp). Its bytes:
 //
 //   "fleetmerge cache" (16 bytes)  format magic
 //   u32 kFormatVersion             this layout
 //   u32 0x01020304                 byte order of the machine that wrote it
 //   u32 n, n bytes                 the fleetmerge version that wrote it
-//   32 bytes                       the key (must equal the file name's)
+//   16 bytes                       the key (must equal the file name's)
 //   u64 n, n bytes                 the payload
-//   32 bytes                       SHA-256 of all the bytes above
+//   16 bytes                       the content hash of all the bytes above
 //
 // An entry is trusted only when all of that checks out: a truncated, corrupt or foreign file
 // (another key's entry under this name, another version's, another byte order's) is counted,
@@ -27,8 +27,8 @@
 #include <optional>
 #include <string>
 
+#include "io/content_hash.hpp"
 #include "io/folder_lock.hpp"
-#include "io/sha256.hpp"
 
 namespace fleetmerge {
 
@@ -41,7 +41,7 @@ struct CacheFolderOptions {
 
 class CacheFolder {
  public:
-  static constexpr std::uint32_t kFormatVersion = 1;
+  static constexpr std::uint32_t kFormatVersion = 2;  // 2: 128-bit XXH3 keys and checksums
 
   // Creates `dir` (and its parents) if needed and locks it. Entries are valid only for
   // `version` (fleetmerge's): others are never trusted. Throws fleetmerge::Error naming `dir`
@@ -54,13 +54,13 @@ class CacheFolder {
 
   // The payload stored under `key`; nullopt when there is none or it is not to be trusted (then
   // the file is removed and counted in rejected()). Safe to call from several threads.
-  std::optional<std::string> Read(const Sha256Digest& key);
+  std::optional<std::string> Read(const ContentDigest& key);
   // Removes the entry under `key`, counted in rejected(): for a caller that found its payload
   // unusable.
-  void Discard(const Sha256Digest& key);
+  void Discard(const ContentDigest& key);
   // Stores `payload` under `key`, replacing any entry. Throws fleetmerge::Error naming the file
   // when it cannot be written. Safe to call from several threads.
-  void Write(const Sha256Digest& key, const std::string& payload);
+  void Write(const ContentDigest& key, const std::string& payload);
   // Removes the least recently used entries (and temporary files of killed jobs) until the
   // entries take at most options.max_bytes. Returns how many entries it removed.
   int Evict();
@@ -69,7 +69,7 @@ class CacheFolder {
   // called afterwards (they throw fleetmerge::Error).
   void Unlock();
 
-  std::filesystem::path EntryPath(const Sha256Digest& key) const;
+  std::filesystem::path EntryPath(const ContentDigest& key) const;
   const std::filesystem::path& dir() const { return dir_; }
   int rejected() const { return rejected_; }
 
@@ -83,7 +83,7 @@ class CacheFolder {
 };
 
 // The entry file's bytes for `payload` (exposed for tests that forge entries).
-std::string CacheEntryBytes(const Sha256Digest& key, const std::string& version,
+std::string CacheEntryBytes(const ContentDigest& key, const std::string& version,
                             const std::string& payload);
 
 }  // namespace fleetmerge

@@ -47,8 +47,8 @@ std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
   }
   std::vector<PairOutcome> outcomes(jobs.size());
   std::vector<char> found(jobs.size(), 0);
-  std::vector<Sha256Digest> digests;
-  Sha256Digest options_digest{};
+  std::vector<ContentDigest> digests;
+  ContentDigest options_digest{};
   if (cache) {
     digests.resize(maps.size());
     ParallelFor(maps.size(), threads, [&](std::size_t m) { digests[m] = MapDigest(maps[m]); });

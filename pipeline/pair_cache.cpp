@@ -36,7 +36,7 @@ constexpr std::uint32_t kPairPayloadTag = 0x70616972;  // "pair"
 
 }  // namespace
 
-Sha256Digest MapDigest(const OccupancyGrid& grid) {
+ContentDigest MapDigest(const OccupancyGrid& grid) {
   const GridGeometry& g = grid.geometry();
   std::string header = "occupancy grid";
   AppendField(header, "width", g.width());
@@ -45,14 +45,14 @@ Sha256Digest MapDigest(const OccupancyGrid& grid) {
   AppendField(header, "origin_x_m", g.T_map_grid().x_m());
   AppendField(header, "origin_y_m", g.T_map_grid().y_m());
   AppendField(header, "origin_yaw_rad", g.T_map_grid().yaw_rad());
-  Sha256 hash;
+  ContentHash hash;
   hash.Update(header);
   const cv::Mat1b& cells = grid.cells();
   for (int row = 0; row < cells.rows; ++row) hash.Update(cells.ptr(row), cells.cols);
   return hash.Finish();
 }
 
-Sha256Digest PairOptionsDigest(const PairOptions& o, const std::string& version) {
+ContentDigest PairOptionsDigest(const PairOptions& o, const std::string& version) {
   // Every field that can change a pair's hypotheses; a field added to PairOptions (or to the
   // options it holds) must be added here, or caches would return another setting's pairs.
   const HypothesisOptions& h = o.hypotheses;
@@ -82,7 +82,7 @@ Sha256Digest PairOptionsDigest(const PairOptions& o, const std::string& version)
   AppendAlignment(bytes, "quick_refine", o.quick_refine);
   AppendAlignment(bytes, "final_refine", o.final_refine);
   AppendField(bytes, "final_refine_count", o.final_refine_count);
-  return Sha256Of(bytes);
+  return ContentHashOf(bytes);
 }
 
 std::string PairOutcomePayload(const PairOutcome& outcome) {
@@ -138,9 +138,9 @@ PairCache::PairCache(const std::filesystem::path& dir, const std::string& versio
                      const CacheFolderOptions& options)
     : version_(version), folder_(dir, version, options) {}
 
-Sha256Digest PairCache::PairKey(const Sha256Digest& options, const Sha256Digest& a,
-                                const Sha256Digest& b) {
-  Sha256 hash;
+ContentDigest PairCache::PairKey(const ContentDigest& options, const ContentDigest& a,
+                                 const ContentDigest& b) {
+  ContentHash hash;
   hash.Update("pair hypotheses\n");
   hash.Update(options.data(), options.size());
   hash.Update(a.data(), a.size());
@@ -148,9 +148,9 @@ Sha256Digest PairCache::PairKey(const Sha256Digest& options, const Sha256Digest&
   return hash.Finish();
 }
 
-std::optional<PairOutcome> PairCache::FindPair(const Sha256Digest& options, const Sha256Digest& a,
-                                               const Sha256Digest& b) {
-  const Sha256Digest key = PairKey(options, a, b);
+std::optional<PairOutcome> PairCache::FindPair(const ContentDigest& options, const ContentDigest& a,
+                                               const ContentDigest& b) {
+  const ContentDigest key = PairKey(options, a, b);
   const std::optional<std::string> payload = folder_.Read(key);
   if (!payload) return std::nullopt;
   std::optional<PairOutcome> outcome = ParsePairOutcome(*payload);
@@ -158,8 +158,8 @@ std::optional<PairOutcome> PairCache::FindPair(const Sha256Digest& options, cons
   return outcome;
 }
 
-void PairCache::StorePair(const Sha256Digest& options, const Sha256Digest& a, const Sha256Digest& b,
-                          const PairOutcome& outcome) {
+void PairCache::StorePair(const ContentDigest& options, const ContentDigest& a,
+                          const ContentDigest& b, const PairOutcome& outcome) {
   try {
     folder_.Write(PairKey(options, a, b), PairOutcomePayload(outcome));
   } catch (const Error& e) {

@@ -3,7 +3,7 @@
 // with the cache a re-run computes only the pairs it has not seen: adding one map to N costs
 // N pairs instead of (N + 1) N / 2.
 //
-// A pair's entry is keyed by the SHA-256 of
+// A pair's entry is keyed by the content hash (io/content_hash.hpp) of
 //   - both maps' contents as the pair search sees them (MapDigest: size, resolution, origin and
 //     every cell, after resampling to the job's resolution), in the pair's order (a before b),
 //   - every PairOptions field (PairOptionsDigest; MergeFleet copies min_overlap_cells in), and
@@ -21,16 +21,16 @@
 
 #include "core/occupancy_grid.hpp"
 #include "io/cache_folder.hpp"
-#include "io/sha256.hpp"
+#include "io/content_hash.hpp"
 #include "job/pair_options.hpp"
 #include "pipeline/all_pairs.hpp"
 
 namespace fleetmerge {
 
 // The digest of a map's geometry (size, resolution, origin) and cells.
-Sha256Digest MapDigest(const OccupancyGrid& grid);
+ContentDigest MapDigest(const OccupancyGrid& grid);
 // The digest of every PairOptions field and of `version`.
-Sha256Digest PairOptionsDigest(const PairOptions& options, const std::string& version);
+ContentDigest PairOptionsDigest(const PairOptions& options, const std::string& version);
 
 // The hypotheses and scores of a pair (not its indices, nor the fleet's decisions on it), and
 // back. ParsePairOutcome returns nullopt for bytes that are not such a payload.
@@ -57,11 +57,11 @@ class PairCache {
 
   // For a job with these pair options: the pair of maps with these digests (a before b), or
   // nullopt. The outcome's indices are left 0: the caller sets them.
-  std::optional<PairOutcome> FindPair(const Sha256Digest& options, const Sha256Digest& a,
-                                      const Sha256Digest& b);
+  std::optional<PairOutcome> FindPair(const ContentDigest& options, const ContentDigest& a,
+                                      const ContentDigest& b);
   // Stores the pair. A failure (a full disk) does not fail the job, whose result is already
   // computed: it is counted, and the first message kept, in stats().
-  void StorePair(const Sha256Digest& options, const Sha256Digest& a, const Sha256Digest& b,
+  void StorePair(const ContentDigest& options, const ContentDigest& a, const ContentDigest& b,
                  const PairOutcome& outcome);
   // Evicts the least recently used entries beyond the size bound (CacheFolder::Evict) and
   // releases the folder for other jobs. MergeFleet closes its cache once the pairs are done, so
@@ -76,8 +76,8 @@ class PairCache {
   void CountPairs(int cached, int computed, int maps_prepared);
 
  private:
-  static Sha256Digest PairKey(const Sha256Digest& options, const Sha256Digest& a,
-                              const Sha256Digest& b);
+  static ContentDigest PairKey(const ContentDigest& options, const ContentDigest& a,
+                               const ContentDigest& b);
   std::string version_;
   CacheFolder folder_;
   bool closed_ = false;

@@ -11,6 +11,7 @@ cli_packages=(
   build-essential cmake pkg-config
   libeigen3-dev libceres-dev libopencv-core-dev libopencv-imgproc-dev
   liboctomap-dev libyaml-cpp-dev libspng-dev zlib1g-dev nlohmann-json3-dev libcli11-dev
+  libxxhash-dev  # header-only here: the re-run cache's content hash (io/content_hash.hpp)
   libbz2-dev liblz4-dev libzstd-dev libsqlite3-dev  # bag readers (rosbag/: ROS 1, MCAP, db3)
 )
 packages=(

@@ -16,6 +16,7 @@
 #include "cli/process_threads.hpp"
 #include "io/map_io.hpp"
 #include "job/job.hpp"
+#include "pipeline/pair_cache.hpp"
 #include "sim/ground_truth_pair.hpp"
 #include "sim/synthetic_office.hpp"
 #include "tests/support/shared_data.hpp"
@@ -64,6 +65,16 @@ void BM_MergeEightMaps(benchmark::State& state) {
   state.SetLabel(std::to_string(state.range(0)) + " thread(s)");
 }
 BENCHMARK(BM_MergeEightMaps)->Arg(2)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The re-run cache's key of one map (pipeline/pair_cache.hpp: its geometry and every cell through
+// io/content_hash.hpp), which a job with --cache computes for each of its maps; bytes/s in the
+// output. The map: the eight-map job's first.
+void BM_MapDigest(benchmark::State& state) {
+  static const OccupancyGrid map = LoadMap(EightMapJob().maps.front().path).grid;
+  for (auto _ : state) benchmark::DoNotOptimize(MapDigest(map));
+  state.SetBytesProcessed(state.iterations() * map.width() * map.height());
+}
+BENCHMARK(BM_MapDigest)->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 }  // namespace fleetmerge

@@ -30,7 +30,7 @@ bool Contains(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-Sha256Digest Key(const std::string& name) { return Sha256Of(name); }
+ContentDigest Key(const std::string& name) { return ContentHashOf(name); }
 
 class CacheFolderTest : public ::testing::Test {
  protected:
@@ -80,7 +80,7 @@ TEST_F(CacheFolderTest, BadEntriesAreRejectedAndRemoved) {
       {"another format's", [&] {  // a sound checksum over a format version 2 header
          std::string b = good.substr(0, good.size() - 32);
          b[16] = 2;
-         const Sha256Digest sum = Sha256Of(b);
+         const ContentDigest sum = ContentHashOf(b);
          return b + std::string(sum.begin(), sum.end());
        }()}};
   int rejected = 0;

@@ -259,7 +259,7 @@ TEST_F(PairCacheTest, TheCacheIsReleasedOnceThePairsAreDone) {
 
 TEST(MapDigest, ChangesWithCellsResolutionAndOrigin) {
   OccupancyGrid grid(GridGeometry(0.05, {40, 30}, Pose2(1.0, 2.0, 0.0)), CellState::kFree);
-  const Sha256Digest digest = MapDigest(grid);
+  const ContentDigest digest = MapDigest(grid);
   EXPECT_EQ(MapDigest(grid), digest);
   OccupancyGrid cell = grid;
   cell.mutable_cells()(3, 7) = static_cast<std::uint8_t>(CellState::kOccupied);
