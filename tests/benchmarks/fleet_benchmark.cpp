@@ -16,7 +16,9 @@
 #include "cli/process_threads.hpp"
 #include "io/map_io.hpp"
 #include "job/job.hpp"
+#include "pipeline/composite.hpp"
 #include "pipeline/pair_cache.hpp"
+#include "pipeline/preview.hpp"
 #include "sim/ground_truth_pair.hpp"
 #include "sim/synthetic_office.hpp"
 #include "tests/support/shared_data.hpp"
@@ -75,6 +77,27 @@ void BM_MapDigest(benchmark::State& state) {
   state.SetBytesProcessed(state.iterations() * map.width() * map.height());
 }
 BENCHMARK(BM_MapDigest)->Unit(benchmark::kMicrosecond);
+
+// Compositing and the colour preview of the eight maps on one thread, each turned by a yaw of
+// its own (0.7 rad apart; the first at identity, as a reference map is): the sampling of every
+// input at every merged cell that `merge`'s composite and write stages do.
+void BM_CompositeAndPreview(benchmark::State& state) {
+  static const std::vector<OccupancyGrid> maps = [] {
+    std::vector<OccupancyGrid> loaded;
+    for (const JobMap& m : EightMapJob().maps) loaded.push_back(LoadMap(m.path).grid);
+    return loaded;
+  }();
+  std::vector<CompositeInput> inputs;
+  for (std::size_t k = 0; k < maps.size(); ++k) {
+    inputs.push_back({&maps[k], Pose2(3.0 * k, -2.0 * k, 0.7 * k)});
+  }
+  for (auto _ : state) {
+    const OccupancyGrid merged =
+        Composite(inputs, maps.front().geometry().resolution_m(), FusionMode::kLogOdds, 1, 0);
+    benchmark::DoNotOptimize(ColourPreview(inputs, merged, 1));
+  }
+}
+BENCHMARK(BM_CompositeAndPreview)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace fleetmerge
