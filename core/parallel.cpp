@@ -23,6 +23,12 @@ namespace {
 // so a ParallelFor inside a ParallelFor body cannot wait for a worker that waits for it.
 class WorkerPool {
  public:
+  // One ParallelFor's tasks still running (guarded by the pool's mutex).
+  struct Batch {
+    int running = 0;
+    std::condition_variable done;
+  };
+
   // The process's pool. Never destroyed: its idle workers wait until the process ends. A child
   // made by fork() has none of its parent's threads, so it gets a pool of its own.
   static WorkerPool& Get() {
@@ -40,9 +46,9 @@ class WorkerPool {
     return *current;
   }
 
-  // Queues `task` for an idle worker or a new one; false (task dropped) when no thread can be
-  // started.
-  bool Run(std::function<void()> task) {
+  // Queues `task` of `batch` for an idle worker or a new one; false (task dropped) when no
+  // thread can be started.
+  bool Run(std::function<void()> task, Batch& batch) {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (idle_ == 0) {
       try {
@@ -51,44 +57,58 @@ class WorkerPool {
         return false;
       }
     } else {
-      --idle_;  // that worker is now spoken for
+      --idle_;  // a waiting worker is now spoken for
       wake_.notify_one();
     }
-    tasks_.push_back(std::move(task));
+    tasks_.push_back({std::move(task), &batch});
+    ++batch.running;
     return true;
   }
 
+  // Returns once every task of `batch` has run.
+  void Wait(Batch& batch) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    batch.done.wait(lock, [&] { return batch.running == 0; });
+  }
+
  private:
+  struct Task {
+    std::function<void()> run;
+    Batch* batch;
+  };
+
   WorkerPool() : pid_(getpid()) {}
 
+  // idle_ counts the workers waiting (or about to) less the tasks queued, whichever worker
+  // takes which task.
   void Work() {
     std::unique_lock<std::mutex> lock(mutex_);
     for (;;) {
-      if (tasks_.empty()) {
-        ++idle_;
-        wake_.wait(lock, [this] { return !tasks_.empty(); });
-      }
-      std::function<void()> task = std::move(tasks_.front());
+      wake_.wait(lock, [this] { return !tasks_.empty(); });
+      Task task = std::move(tasks_.front());
       tasks_.pop_front();
       lock.unlock();
-      task();  // ParallelFor's worker: it catches what the body throws
+      task.run();  // ParallelFor's worker: it catches what the body throws
       lock.lock();
+      // Counted idle before its batch hears of it, so that the caller's next ParallelFor finds
+      // this worker instead of starting another.
+      ++idle_;
+      if (--task.batch->running == 0) task.batch->done.notify_all();
     }
   }
 
   const pid_t pid_;
   std::mutex mutex_;
   std::condition_variable wake_;
-  std::deque<std::function<void()>> tasks_;
-  int idle_ = 0;  // waiting workers not yet given a queued task
+  std::deque<Task> tasks_;
+  int idle_ = 0;
 };
 
 }  // namespace
 
 void ParallelFor(std::size_t count, int threads, const std::function<void(std::size_t)>& body) {
   std::atomic<std::size_t> next{0};
-  std::mutex mutex;  // guards `failure`, `failed_index` and `helpers_running`
-  std::condition_variable helpers_done;
+  std::mutex mutex;  // guards `failure` and `failed_index`
   std::exception_ptr failure;
   std::size_t failed_index = count;
   const auto worker = [&] {
@@ -103,21 +123,13 @@ void ParallelFor(std::size_t count, int threads, const std::function<void(std::s
   };
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = static_cast<int>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
-  int helpers_running = threads - 1;
+  WorkerPool::Batch helpers;
+  // A helper that cannot be started leaves its share to the threads running (this one at least).
   for (int t = 1; t < threads; ++t) {
-    const bool started = WorkerPool::Get().Run([&] {
-      worker();
-      const std::lock_guard<std::mutex> lock(mutex);
-      if (--helpers_running == 0) helpers_done.notify_one();
-    });
-    if (!started) {  // the threads running (this one at least) do the work
-      const std::lock_guard<std::mutex> lock(mutex);
-      --helpers_running;
-    }
+    if (!WorkerPool::Get().Run(worker, helpers)) break;
   }
   worker();  // this thread works too
-  std::unique_lock<std::mutex> lock(mutex);
-  helpers_done.wait(lock, [&] { return helpers_running == 0; });
+  if (threads > 1) WorkerPool::Get().Wait(helpers);
   if (failure) std::rethrow_exception(failure);
 }
 
