@@ -57,13 +57,15 @@ std::optional<std::string> ParseEntry(const std::string& bytes, const ContentDig
 }
 
 constexpr std::size_t kKeyDigits = 2 * sizeof(ContentDigest);
+// Format 1 named its entries by 64 hex digits (SHA-256 keys): no reader finds them any more.
+constexpr std::size_t kFormat1KeyDigits = 64;
 
-bool IsEntryName(const std::string& name) {
+bool IsEntryName(const std::string& name, std::size_t key_digits = kKeyDigits) {
   const std::size_t ext = std::strlen(kEntryExtension);
-  if (name.size() != kKeyDigits + ext || name.compare(kKeyDigits, ext, kEntryExtension) != 0) {
+  if (name.size() != key_digits + ext || name.compare(key_digits, ext, kEntryExtension) != 0) {
     return false;
   }
-  return std::all_of(name.begin(), name.begin() + kKeyDigits,
+  return std::all_of(name.begin(), name.begin() + key_digits,
                      [](char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); });
 }
 
@@ -166,12 +168,17 @@ int CacheFolder::Evict() {
   };
   std::vector<Entry> entries;
   std::int64_t total = 0;
+  int removed = 0;
   std::error_code ec;
   for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     std::error_code entry_ec;
     if (IsEntryTempName(name)) {  // the folder is locked: nobody is writing it
       fs::remove(it->path(), entry_ec);
+      continue;
+    }
+    if (IsEntryName(name, kFormat1KeyDigits)) {  // an older fleetmerge's: never read again
+      removed += fs::remove(it->path(), entry_ec) ? 1 : 0;
       continue;
     }
     if (!IsEntryName(name) || !it->is_regular_file(entry_ec)) continue;
@@ -184,7 +191,6 @@ int CacheFolder::Evict() {
   std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
     return std::tie(a.used, a.path) < std::tie(b.used, b.path);
   });
-  int removed = 0;
   for (const Entry& entry : entries) {
     if (total <= max_bytes_) break;
     std::error_code remove_ec;

@@ -61,8 +61,9 @@ class CacheFolder {
   // Stores `payload` under `key`, replacing any entry. Throws fleetmerge::Error naming the file
   // when it cannot be written. Safe to call from several threads.
   void Write(const ContentDigest& key, const std::string& payload);
-  // Removes the least recently used entries (and temporary files of killed jobs) until the
-  // entries take at most options.max_bytes. Returns how many entries it removed.
+  // Removes the least recently used entries (and temporary files of killed jobs, and entries of
+  // the older format 1) until the entries take at most options.max_bytes. Returns how many
+  // entries it removed.
   int Evict();
 
   // Releases the folder's lock: another job may use it now. Read, Write and Evict must not be

@@ -126,6 +126,21 @@ TEST_F(CacheFolderTest, EvictsTheLeastRecentlyUsedBeyondTheBound) {
   EXPECT_EQ(cache.Evict(), 0);
 }
 
+// A cache an older fleetmerge filled (format 1: entries named by 64 hex digits, SHA-256 keys)
+// is never read by this one, so its entries go at the first eviction, whatever the bound.
+TEST_F(CacheFolderTest, EvictionRemovesTheEntriesOfTheOlderFormat) {
+  { CacheFolder cache(dir_, "v", Options()); }
+  const fs::path old_entry = dir_ / (std::string(64, 'a') + ".entry");
+  ft::WriteFile(old_entry, "fleetmerge cache of format 1");
+  ft::WriteFile(dir_ / "notes.txt", "a user's file, not an entry");
+  CacheFolder cache(dir_, "v", Options());
+  cache.Write(Key("new"), "payload");
+  EXPECT_EQ(cache.Evict(), 1);
+  EXPECT_FALSE(fs::exists(old_entry));
+  EXPECT_EQ(cache.Read(Key("new")).value_or("absent"), "payload");
+  EXPECT_TRUE(fs::exists(dir_ / "notes.txt"));
+}
+
 TEST_F(CacheFolderTest, AFolderThatIsAFileIsAnErrorNamingIt) {
   fs::create_directories(dir_.parent_path());
   ft::WriteFile(dir_, "a file");
