@@ -18,7 +18,7 @@ void CheckNotAnInput(const std::filesystem::path& path,
 
 // kNoSync skips the fsyncs (of the file and of its folder): still all-or-nothing for readers
 // while the machine runs, but after a power cut the file may be empty or old. Only for files
-// whose readers check their bytes (cache entries carry a SHA-256, io/cache_folder.hpp) and
+// whose readers check their bytes (cache entries carry a content hash, io/cache_folder.hpp) and
 // would rather rebuild one than pay an fsync per file.
 enum class AtomicWrite { kDurable, kNoSync };
 
