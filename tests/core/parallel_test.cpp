@@ -62,6 +62,28 @@ TEST(ParallelFor, NestedCallsRunEveryIndexOnce) {
   }
 }
 
+// Several callers at once (threads of a program that links the library, each merging a pair)
+// share the kept workers: each call still runs its own indices once and returns when they ran.
+TEST(ParallelFor, ConcurrentCallersEachRunTheirOwnIndicesOnce) {
+  constexpr int kCallers = 4, kRounds = 50, kCount = 40;
+  std::vector<std::vector<std::atomic<int>>> runs(kCallers);
+  for (auto& r : runs) r = std::vector<std::atomic<int>>(kCount);
+  std::vector<std::thread> callers;
+  for (int c = 0; c < kCallers; ++c) {
+    callers.emplace_back([&, c] {
+      for (int round = 0; round < kRounds; ++round) {
+        ParallelFor(kCount, 3, [&](std::size_t k) {
+          ParallelFor(2, 2, [&](std::size_t half) { runs[c][k] += half == 0 ? 1 : 0; });
+        });
+        for (int k = 0; k < kCount; ++k) {
+          if (runs[c][k] != round + 1) ADD_FAILURE() << "caller " << c << " index " << k;
+        }
+      }
+    });
+  }
+  for (auto& t : callers) t.join();
+}
+
 // Workers are kept between calls; a child made by fork() has none of them and must not wait
 // for its parent's.
 TEST(ParallelFor, WorksInAForkedChildAfterThePoolStarted) {
