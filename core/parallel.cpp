@@ -122,13 +122,19 @@ void ParallelFor(std::size_t count, int threads, const std::function<void(std::s
   };
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   threads = static_cast<int>(std::min<std::size_t>(threads, std::max<std::size_t>(count, 1)));
-  WorkerPool::Batch helpers;
-  // A helper that cannot be started leaves its share to the threads running (this one at least).
-  for (int t = 1; t < threads; ++t) {
-    if (!WorkerPool::Get().Run(worker, helpers)) break;
+  if (threads == 1) {
+    worker();
+  } else {
+    WorkerPool& pool = WorkerPool::Get();
+    WorkerPool::Batch helpers;
+    // A helper that cannot be started leaves its share to the threads running (this one at
+    // least).
+    for (int t = 1; t < threads; ++t) {
+      if (!pool.Run(worker, helpers)) break;
+    }
+    worker();            // this thread works too
+    pool.Wait(helpers);  // on the pool the helpers were queued in
   }
-  worker();  // this thread works too
-  if (threads > 1) WorkerPool::Get().Wait(helpers);
   if (failure) std::rethrow_exception(failure);
 }
 
