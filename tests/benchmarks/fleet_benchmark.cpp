@@ -68,11 +68,21 @@ void BM_MergeEightMaps(benchmark::State& state) {
 }
 BENCHMARK(BM_MergeEightMaps)->Arg(2)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
+// The eight maps as the job loads them, for the benchmarks of single stages.
+const std::vector<OccupancyGrid>& EightMaps() {
+  static const std::vector<OccupancyGrid> maps = [] {
+    std::vector<OccupancyGrid> loaded;
+    for (const JobMap& m : EightMapJob().maps) loaded.push_back(LoadMap(m.path).grid);
+    return loaded;
+  }();
+  return maps;
+}
+
 // The re-run cache's key of one map (pipeline/pair_cache.hpp: its geometry and every cell through
 // io/content_hash.hpp), which a job with --cache computes for each of its maps; bytes/s in the
 // output. The map: the eight-map job's first.
 void BM_MapDigest(benchmark::State& state) {
-  static const OccupancyGrid map = LoadMap(EightMapJob().maps.front().path).grid;
+  const OccupancyGrid& map = EightMaps().front();
   for (auto _ : state) benchmark::DoNotOptimize(MapDigest(map));
   state.SetBytesProcessed(state.iterations() * map.width() * map.height());
 }
@@ -82,11 +92,7 @@ BENCHMARK(BM_MapDigest)->Unit(benchmark::kMicrosecond);
 // its own (0.7 rad apart; the first at identity, as a reference map is): the sampling of every
 // input at every merged cell that `merge`'s composite and write stages do.
 void BM_CompositeAndPreview(benchmark::State& state) {
-  static const std::vector<OccupancyGrid> maps = [] {
-    std::vector<OccupancyGrid> loaded;
-    for (const JobMap& m : EightMapJob().maps) loaded.push_back(LoadMap(m.path).grid);
-    return loaded;
-  }();
+  const std::vector<OccupancyGrid>& maps = EightMaps();
   std::vector<CompositeInput> inputs;
   for (std::size_t k = 0; k < maps.size(); ++k) {
     inputs.push_back({&maps[k], Pose2(3.0 * k, -2.0 * k, 0.7 * k)});
