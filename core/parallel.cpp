@@ -45,21 +45,23 @@ class WorkerPool {
     return *current;
   }
 
-  // Queues `task` of `batch` for an idle worker or a new one; false (task dropped) when no
-  // thread can be started.
+  // Hands `task` of `batch` to an idle worker, or to a new thread that runs it first; false (task
+  // dropped) when no thread can be started.
   bool Run(std::function<void()> task, Batch& batch) {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (idle_ == 0) {
+      // The new thread runs this very task (it waits for the lock first), so its start-up is over
+      // before the batch is: a caller that returns and then forks copies no thread half started.
       try {
-        std::thread(&WorkerPool::Work, this).detach();  // it waits for the lock, then the task
+        std::thread(&WorkerPool::Work, this, Task{std::move(task), &batch}).detach();
       } catch (const std::system_error&) {
         return false;
       }
     } else {
       --idle_;  // a waiting worker is now spoken for
+      tasks_.push_back({std::move(task), &batch});
       wake_.notify_one();
     }
-    tasks_.push_back({std::move(task), &batch});
     ++batch.running;
     return true;
   }
@@ -80,19 +82,24 @@ class WorkerPool {
 
   // idle_ counts the workers waiting (or about to) less the tasks queued, whichever worker
   // takes which task.
-  void Work() {
-    std::unique_lock<std::mutex> lock(mutex_);
+  void Work(Task task) {
+    std::unique_lock<std::mutex> lock(mutex_, std::defer_lock);
     for (;;) {
-      wake_.wait(lock, [this] { return !tasks_.empty(); });
-      Task task = std::move(tasks_.front());
-      tasks_.pop_front();
-      lock.unlock();
       task.run();  // ParallelFor's worker: it catches what the body throws
+      // Freed before the batch hears of it: once its caller returns, no worker of the batch is
+      // inside the allocator, so a fork() right after (the Python module may fork) copies no
+      // allocator lock a worker held. glibc's malloc guards fork() itself; AddressSanitizer's
+      // allocator (clang 14) does not.
+      task.run = nullptr;
       lock.lock();
       // Counted idle before its batch hears of it, so that the caller's next ParallelFor finds
       // this worker instead of starting another.
       ++idle_;
       if (--task.batch->running == 0) task.batch->done.notify_all();
+      wake_.wait(lock, [this] { return !tasks_.empty(); });
+      task = std::move(tasks_.front());
+      tasks_.pop_front();
+      lock.unlock();
     }
   }
 
