@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>  // cv::boundingRect
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -53,17 +53,15 @@ struct CellBox {
   int i0 = 0, j0 = 0, i1 = 0, j1 = 0;
 };
 CellBox KnownBox(const OccupancyGrid& grid) {
-  CellBox box{std::numeric_limits<int>::max(), std::numeric_limits<int>::max(), -1, -1};
-  for (int j = 0; j < grid.height(); ++j) {
-    const std::uint8_t* row = grid.cells().ptr<std::uint8_t>(j);
-    for (int i = 0; i < grid.width(); ++i) {
-      if (row[i] == static_cast<std::uint8_t>(CellState::kUnknown)) continue;
-      box.i0 = std::min(box.i0, i), box.i1 = std::max(box.i1, i + 1);
-      box.j0 = std::min(box.j0, j), box.j1 = std::max(box.j1, j + 1);
-    }
-  }
-  if (box.i1 < 0) box = {0, 0, grid.width(), grid.height()};
-  return box;
+  // OpenCV's vectorised compare and box, not a loop over the cells: the page asks twice a map,
+  // and the loop took about a sixth of report_html's time on the 33 robots of
+  // scripts/cache_rerun_benchmark.sh.
+  const cv::Rect known =
+      grid.cells().empty()
+          ? cv::Rect()
+          : cv::boundingRect(grid.cells() != static_cast<std::uint8_t>(CellState::kUnknown));
+  if (known.empty()) return {0, 0, grid.width(), grid.height()};
+  return {known.x, known.y, known.x + known.width, known.y + known.height};
 }
 
 // Centre of the known cells' box in the map frame: where the pose graph draws the map's node.
