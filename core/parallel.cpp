@@ -50,8 +50,8 @@ class WorkerPool {
   bool Run(std::function<void()> task, Batch& batch) {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (idle_ == 0) {
-      // The new thread runs this very task (it waits for the lock first), so its start-up is over
-      // before the batch is: a caller that returns and then forks copies no thread half started.
+      // The new thread runs this very task, so its start-up is over before the batch is: a caller
+      // that returns and then forks copies no thread half started.
       try {
         std::thread(&WorkerPool::Work, this, Task{std::move(task), &batch}).detach();
       } catch (const std::system_error&) {
