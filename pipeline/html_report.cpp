@@ -53,20 +53,16 @@ struct CellBox {
   int i0 = 0, j0 = 0, i1 = 0, j1 = 0;
 };
 CellBox KnownBox(const OccupancyGrid& grid) {
-  // OpenCV's vectorised compare and box, not a loop over the cells: the page asks twice a map,
-  // and the loop took about a sixth of report_html's time on the 33 robots of
-  // scripts/cache_rerun_benchmark.sh.
-  const cv::Rect known =
-      grid.cells().empty()
-          ? cv::Rect()
-          : cv::boundingRect(grid.cells() != static_cast<std::uint8_t>(CellState::kUnknown));
+  // kUnknown is 0, so the bounding box of non-zero cells is that of the known cells (as
+  // pipeline/composite.cpp finds it).
+  const cv::Rect known = grid.cells().empty() ? cv::Rect() : cv::boundingRect(grid.cells());
   if (known.empty()) return {0, 0, grid.width(), grid.height()};
   return {known.x, known.y, known.x + known.width, known.y + known.height};
 }
 
-// Centre of the known cells' box in the map frame: where the pose graph draws the map's node.
-Eigen::Vector2d KnownCentre(const OccupancyGrid& grid) {
-  const CellBox box = KnownBox(grid);
+// Centre of the known cells' box `box` in the map frame: where the pose graph draws the map's
+// node.
+Eigen::Vector2d KnownCentre(const OccupancyGrid& grid, const CellBox& box) {
   const double r = grid.geometry().resolution_m();
   return grid.geometry().T_map_grid() *
          Eigen::Vector2d((box.i0 + box.i1) * r / 2.0, (box.j0 + box.j1) * r / 2.0);
@@ -92,6 +88,7 @@ std::string HexColour(const cv::Vec3b& bgr) {
 // The page's own data beside report.json's: geometry, images, node positions, inputs, options.
 nlohmann::json PageJson(const HtmlReport& page) {
   nlohmann::json maps = nlohmann::json::array();
+  std::vector<CellBox> known_boxes;  // of each map, for its image's view and its node
   for (std::size_t m = 0; m < page.maps.size(); ++m) {
     const HtmlReportMap& map = page.maps[m];
     nlohmann::json j = GeometryJson(*map.grid);
@@ -104,6 +101,7 @@ nlohmann::json PageJson(const HtmlReport& page) {
     // The known cells' box in image pixels [u0, v0, u1, v1] (rows from the top): the page fits
     // its views to it rather than to the grid's unknown margins.
     const CellBox box = KnownBox(*map.grid);
+    known_boxes.push_back(box);
     j["known_box"] = {box.i0, map.grid->height() - box.j1, box.i1, map.grid->height() - box.j0};
     j["known_cells"] =
         map.grid->width() * map.grid->height() - map.grid->Count(CellState::kUnknown);
@@ -124,7 +122,7 @@ nlohmann::json PageJson(const HtmlReport& page) {
       j["nodes"] = nlohmann::json::array();
       for (int m : component.maps) {
         const Eigen::Vector2d p_merged =
-            page.maps[m].T_component_map * KnownCentre(*page.maps[m].grid);
+            page.maps[m].T_component_map * KnownCentre(*page.maps[m].grid, known_boxes[m]);
         const Eigen::Vector2d p_grid = g.T_map_grid().inverse() * p_merged;
         j["nodes"].push_back({{"map", m},
                               {"u", p_grid.x() / g.resolution_m()},
