@@ -5,9 +5,9 @@
 #include <array>
 #include <cmath>
 #include <functional>
-#include <opencv2/imgproc.hpp>
 
 #include "core/error.hpp"
+#include "core/image_filters.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -26,9 +26,7 @@ struct CoarseLayers {
 };
 
 CoarseLayers OpenSpaceAround(cv::Mat1f walls, cv::Mat1f free) {
-  cv::Mat1f near_walls;
-  cv::dilate(walls, near_walls, cv::Mat());
-  free.setTo(0.f, near_walls > 0.f);
+  free.setTo(0.f, MaxFilter(walls, 1, 1) > 0.f);
   return {walls, free};
 }
 
@@ -62,7 +60,7 @@ CoarseLayers CoarseGridLayers(const OccupancyGrid& a, int pooling) {
 std::vector<cv::Mat1f> FixedLayers(const OccupancyGrid& a, int pooling, double free_penalty,
                                    cv::Point* offset_px) {
   const CoarseLayers layers = CoarseGridLayers(a, pooling);
-  cv::Rect known = cv::boundingRect((layers.walls > 0.f) | (layers.open > 0.f));
+  cv::Rect known = NonZeroBox((layers.walls > 0.f) | (layers.open > 0.f));
   *offset_px = cv::Point(0, 0);
   if (known.area() > 0) {
     constexpr int kMargin = 3;  // the 5 x 5 blur reaches 2 pixels, the wall dilation 1
@@ -73,9 +71,8 @@ std::vector<cv::Mat1f> FixedLayers(const OccupancyGrid& a, int pooling, double f
   } else {
     known = cv::Rect(0, 0, layers.walls.cols, layers.walls.rows);
   }
-  cv::Mat1f wall_score;
   // The blur widens the peak so a rotation off by a fraction of a degree still correlates.
-  cv::GaussianBlur(layers.walls, wall_score, cv::Size(5, 5), 1.0);
+  const cv::Mat1f wall_score = GaussianBlur5x5(layers.walls, 1.0);
   const cv::Mat1f score = wall_score - free_penalty * layers.open;
   return {score(known).clone(), layers.walls(known).clone()};
 }

@@ -2,16 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgproc.hpp>
 
+#include "core/image_filters.hpp"
 #include "core/point_sampling.hpp"  // OccupiedCellCenters
 
 namespace fleetmerge {
 
 cv::Mat1b NearWallMask(const OccupancyGrid& grid) {
-  cv::Mat1b near_wall = grid.cells() == static_cast<std::uint8_t>(CellState::kOccupied);
-  cv::dilate(near_wall, near_wall, cv::Mat());
-  return near_wall;
+  const cv::Mat1b walls = grid.cells() == static_cast<std::uint8_t>(CellState::kOccupied);
+  return MaxFilter(walls, 1, 1);
 }
 
 double WallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb) {

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <fstream>
 #include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>
 #include <sstream>
 #include <stdexcept>
 #include <vector>

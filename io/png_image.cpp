@@ -5,7 +5,6 @@
 
 #include <cstdlib>
 #include <memory>
-#include <opencv2/imgproc.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -91,14 +90,14 @@ std::string EncodePng(const cv::Mat& image) {
   CV_Assert(image.depth() == CV_8U || image.depth() == CV_16U);
   CV_Assert(image.channels() == 1 || image.channels() == 3 || image.channels() == 4);
   cv::Mat rgb;  // PNG stores R, G, B; OpenCV images are B, G, R
-  if (image.channels() == 3) {
-    cv::cvtColor(image, rgb, cv::COLOR_BGR2RGB);
-  } else if (image.channels() == 4) {
-    cv::cvtColor(image, rgb, cv::COLOR_BGRA2RGBA);
-  } else {
+  if (image.channels() == 1) {
     rgb = image.isContinuous() ? image : image.clone();
+  } else {
+    // B and R swapped, alpha kept: cv::cvtColor's BGR2RGB / BGRA2RGBA with core alone.
+    rgb.create(image.size(), image.type());
+    const int from_to[] = {0, 2, 1, 1, 2, 0, 3, 3};
+    cv::mixChannels(&image, 1, &rgb, 1, from_to, static_cast<std::size_t>(image.channels()));
   }
-  if (!rgb.isContinuous()) rgb = rgb.clone();
   const std::uint8_t type = rgb.channels() == 1 ? kGrey : (rgb.channels() == 3 ? kRgb : kRgba);
   return Encode(rgb, type, [](spng_ctx*) {});
 }

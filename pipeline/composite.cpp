@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/image_filters.hpp"
 #include "core/parallel.hpp"
 
 namespace fleetmerge {
@@ -143,7 +143,7 @@ GridGeometry MergedGeometry(const std::vector<CompositeInput>& inputs, double re
   for (const CompositeInput& input : inputs) {
     if (input.grid->cells().empty()) continue;
     // kUnknown is 0, so the bounding box of non-zero cells is that of the known cells.
-    const cv::Rect known = cv::boundingRect(input.grid->cells());
+    const cv::Rect known = NonZeroBox(input.grid->cells());
     if (known.area() == 0) continue;
     const GridGeometry& g = input.grid->geometry();
     const Pose2 T_lattice_grid = T_lattice_merged * input.T_merged_map * g.T_map_grid();

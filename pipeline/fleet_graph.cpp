@@ -342,22 +342,6 @@ int ComponentReference(const std::vector<int>& component_of, int c, int referenc
 
 }  // namespace
 
-const char* PlacedByName(PlacedBy placed_by) {
-  switch (placed_by) {
-    case PlacedBy::kFixed:
-      return "fixed";
-    case PlacedBy::kReference:
-      return "reference";
-    case PlacedBy::kPairs:
-      return "pairs";
-    case PlacedBy::kPrior:
-      return "prior";
-    case PlacedBy::kUnmerged:
-      break;
-  }
-  return "unmerged";
-}
-
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
                            const PoseGraphOptions& options, const FixedPoses& fixed,
                            const PosePriors& priors) {

@@ -15,19 +15,10 @@
 
 #include "job/pose_prior.hpp"
 #include "pipeline/all_pairs.hpp"
+#include "pipeline/placed_by.hpp"
 #include "refine/pose_graph.hpp"
 
 namespace fleetmerge {
-
-// What put a map where it is in its component's frame.
-enum class PlacedBy {
-  kFixed,      // a fixed map: at its given pose
-  kReference,  // its component's reference map (its frame, or the site frame with priors)
-  kPairs,      // accepted pairs link it to its component's reference (or to a fixed map)
-  kPrior,      // only its known start pose links it to the rest of its component
-  kUnmerged,   // alone in its component
-};
-const char* PlacedByName(PlacedBy placed_by);  // "fixed", "reference", "pairs", ...
 
 struct FleetGraph {
   std::vector<int> component_of;         // per map, components numbered in map order

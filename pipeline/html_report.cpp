@@ -3,9 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/core.hpp>
-#include <opencv2/imgproc.hpp>  // cv::boundingRect
 
 #include "core/error.hpp"
+#include "core/image_filters.hpp"
 #include "core/parallel.hpp"
 #include "io/atomic_file.hpp"
 #include "io/png_image.hpp"
@@ -55,7 +55,7 @@ struct CellBox {
 CellBox KnownBox(const OccupancyGrid& grid) {
   // kUnknown is 0, so the bounding box of non-zero cells is that of the known cells (as
   // pipeline/composite.cpp finds it).
-  const cv::Rect known = grid.cells().empty() ? cv::Rect() : cv::boundingRect(grid.cells());
+  const cv::Rect known = grid.cells().empty() ? cv::Rect() : NonZeroBox(grid.cells());
   if (known.empty()) return {0, 0, grid.width(), grid.height()};
   return {known.x, known.y, known.x + known.width, known.y + known.height};
 }

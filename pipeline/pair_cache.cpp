@@ -65,7 +65,9 @@ ContentDigest PairOptionsDigest(const PairOptions& o, const std::string& version
   // Builds between releases share a version: a code change that alters any pair's hypotheses
   // (not only their speed) bumps this, so that a cache never mixes the two builds' pairs.
   // 2: the refinement solved with ceres::TinySolver (refine/local_alignment.cpp).
-  constexpr int kPairResultsRevision = 2;
+  // 3: the translation search's 5 x 5 blur by core/image_filters (float rounding differs from
+  //    OpenCV's; refined poses move by ~1e-6 m).
+  constexpr int kPairResultsRevision = 3;
   AppendField(bytes, "pair_results_revision", kPairResultsRevision);
   AppendField(bytes, "hough.n_theta", h.hough.n_theta);
   AppendField(bytes, "hough.rho_step_cells", h.hough.rho_step_cells);

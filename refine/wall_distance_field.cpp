@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <opencv2/imgproc.hpp>
 #include <utility>
 #include <vector>
 
+#include "core/image_filters.hpp"
 #include "core/point_sampling.hpp"
 
 namespace fleetmerge {
@@ -53,10 +53,8 @@ WallDistanceField::WallDistanceField(const std::vector<Eigen::Vector2f>& walls,
   // Stencil rows floor(r) - 1 .. floor(r) + 2 (and columns): a 4 x 4 dilation anchored at
   // (1, 1) of the cells below the truncation value, the border replicated as the grid does.
   const cv::Mat1b near = distances_ < static_cast<float>(truncation_cells);
-  cv::Mat1b stencil_near;
-  cv::dilate(near, stencil_near, cv::Mat1b::ones(4, 4), cv::Point(1, 1), 1, cv::BORDER_REPLICATE);
-  flat_ = stencil_near == 0;
-  grid_ = std::make_unique<Grid>(distances_.ptr<float>(), 0, distances_.rows, 0, distances_.cols);
+  flat_ = MaxFilter(near, 1, 2) == 0;
+  grid_ = std::make_unique<Grid>(Grid{distances_.ptr<float>(), distances_.rows, distances_.cols});
   interpolator_ = std::make_unique<Interpolator>(*grid_);
 }
 

@@ -1,0 +1,30 @@
+// The few image filters the pair search needs: a box maximum (binary dilation), the bounding box
+// of non-zero pixels and a 5 x 5 Gaussian blur.
+//
+// Why not OpenCV's imgproc (cv::dilate, cv::boundingRect, cv::GaussianBlur): loading
+// libopencv_imgproc costs every process about 3.5 ms before main on the CI machine (its
+// initialisers fill ~500 KB of interpolation tables; docs/speed.md, "Where the time goes now"),
+// and these are all the pair search used of it. tests/core/image_filters_test checks each filter
+// against imgproc.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+namespace fleetmerge {
+
+// out(y, x) = max of image(y + dy, x + dx) over dy, dx in [-before, after] that fall inside the
+// image: cv::dilate with a (before + after + 1)-square kernel anchored at (before, before) and a
+// border that adds nothing (its default, or BORDER_REPLICATE: a replicated pixel is one the
+// window already holds).
+cv::Mat1b MaxFilter(const cv::Mat1b& image, int before, int after);
+cv::Mat1f MaxFilter(const cv::Mat1f& image, int before, int after);
+
+// The smallest rectangle holding every non-zero pixel (cv::boundingRect of a mask); empty when
+// there is none. Scans each row from both ends, so a map's known interior is not visited.
+cv::Rect NonZeroBox(const cv::Mat1b& mask);
+
+// cv::GaussianBlur(image, out, cv::Size(5, 5), sigma): separable, the border reflected without
+// repeating the edge pixel (BORDER_REFLECT_101). Agrees with OpenCV to float rounding (~1e-7).
+cv::Mat1f GaussianBlur5x5(const cv::Mat1f& image, double sigma);
+
+}  // namespace fleetmerge
