@@ -1,10 +1,14 @@
-// The `fleetmerge` command line: subcommands over the pipeline library.
+// The whole `fleetmerge` command line: every subcommand, --help and --version
+// (cli/all_commands.hpp).
+#include "cli/all_commands.hpp"
+
 #include <CLI/CLI.hpp>
 #include <iostream>
 #include <string>
 
 #include "cli/bench_command.hpp"
 #include "cli/cli_options.hpp"
+#include "cli/command_line.hpp"
 #include "cli/demo_command.hpp"
 #include "cli/eval_command.hpp"
 #include "cli/example_command.hpp"
@@ -12,45 +16,18 @@
 #include "cli/merge_command.hpp"
 #include "cli/pair_command.hpp"
 #include "cli/process_memory.hpp"
-#include "cli/process_threads.hpp"
 #include "cli/simulate_command.hpp"
-#include "core/error.hpp"
-#include "fleetmerge/version.hpp"  // generated from project(VERSION) (api/CMakeLists.txt)
 
-int main(int argc, char** argv) {
-  using namespace fleetmerge;
-  KeepFreedMemoryForReuse();
-  RunOpenCvOnTheCallingThread();
-  CLI::App app{
-      "fleetmerge: merge the occupancy grid maps of a robot fleet (Carpin's Hough-spectrum "
-      "method)"};
-  app.require_subcommand(1);
+namespace fleetmerge {
+
+int RunAllCommands(int argc, char** argv) {
+  CLI::App app;
+  SetUpTopLevel(app);
   // `fleetmerge --version` and `fleetmerge version` print the same line.
-  const std::string version_line = std::string("fleetmerge ") + FLEETMERGE_VERSION_STRING;
-  app.set_version_flag("--version", version_line, "print the version and exit");
   CLI::App* version_app = app.add_subcommand("version", "Print the version");
 
   PairCommand pair;
-  CLI::App* pair_app = app.add_subcommand(
-      "pair", "Rank the transformations that overlay map B on map A (pose of B's frame in A's)");
-  pair_app->add_option("a", pair.a_yaml, "map A (map_server YAML, or a ROS 1/ROS 2 bag)")
-      ->required();
-  pair_app->add_option("b", pair.b_yaml, "map B (map_server YAML, or a ROS 1/ROS 2 bag)")
-      ->required();
-  // Repeatable options take one value per occurrence (allow_extra_args(false)): by default
-  // CLI11 lets a vector option swallow the map paths after it (`--fixed a a.yaml b.yaml`).
-  pair_app
-      ->add_option("--topic", pair.topics,
-                   "bags: the nav_msgs/OccupancyGrid topic to read (repeatable)")
-      ->allow_extra_args(false);
-  pair_app->add_option("-n", pair.hypotheses, "number of hypotheses")
-      ->check(CLI::Range(1, 100))
-      ->capture_default_str();
-  pair_app->add_option("--threads", pair.threads, "threads (0: all cores)")->capture_default_str();
-  pair_app->add_flag("--json", pair.json, "print JSON instead of a table");
-  pair_app->add_option("--out", pair.out_dir,
-                       "also write the merged map of the best hypothesis into this folder");
-  AddMethodOptions(*pair_app, pair.options);
+  CLI::App* pair_app = AddPairCommand(app, pair);
 
   MergeCommand merge;
   CLI::App* merge_app =
@@ -194,19 +171,12 @@ int main(int argc, char** argv) {
                          "our pipeline (2-D correlation + refinement) instead of the paper's "
                          "(X/Y spectra, no refinement)");
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  } catch (const Error& e) {  // thrown by option callbacks (e.g. a bad sampling spec)
-    std::cerr << "fleetmerge: error: " << e.what() << "\n";
-    return 2;
-  }
+  if (const std::optional<int> exit_code = ParseCommandLine(app, argc, argv)) return *exit_code;
   if (version_app->parsed()) {
-    std::cout << version_line << "\n";
+    std::cout << VersionLine() << "\n";
     return 0;
   }
-  try {
+  return RunReportingErrors([&] {
     if (demo_app->parsed()) return RunDemoCommand(demo, std::cout, std::cerr);
     if (merge_app->parsed()) return RunMergeCommand(merge, std::cout, std::cerr);
     if (pair_app->parsed()) {
@@ -219,12 +189,12 @@ int main(int argc, char** argv) {
     if (eval_app->parsed()) return RunEvalCommand(eval, std::cout);
     if (cut_app->parsed()) return RunCutFleetCommand(cut, std::cout);
     if (sampling_app->parsed()) return RunSamplingBenchCommand(sampling, std::cout, std::cerr);
-  } catch (const Error& e) {
-    std::cerr << "fleetmerge: error: " << e.what() << "\n";
-    return 1;
-  } catch (const std::filesystem::filesystem_error& e) {
-    std::cerr << "fleetmerge: error: " << e.what() << "\n";
-    return 1;
-  }
-  return 0;
+    return 0;
+  });
+}
+
+}  // namespace fleetmerge
+
+extern "C" int fleetmerge_run_all_commands(int argc, char** argv) {
+  return fleetmerge::RunAllCommands(argc, argv);
 }

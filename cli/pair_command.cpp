@@ -1,11 +1,13 @@
 #include "cli/pair_command.hpp"
 
+#include <CLI/CLI.hpp>
 #include <cmath>
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
 
+#include "cli/cli_options.hpp"
 #include "core/error.hpp"
 #include "core/parallel.hpp"
 #include "core/resample.hpp"
@@ -138,6 +140,30 @@ void PrintText(const std::vector<JobMap>& maps, const PairResult& result, std::o
 }
 
 }  // namespace
+
+CLI::App* AddPairCommand(CLI::App& app, PairCommand& command) {
+  CLI::App* pair = app.add_subcommand(
+      "pair", "Rank the transformations that overlay map B on map A (pose of B's frame in A's)");
+  pair->add_option("a", command.a_yaml, "map A (map_server YAML, or a ROS 1/ROS 2 bag)")
+      ->required();
+  pair->add_option("b", command.b_yaml, "map B (map_server YAML, or a ROS 1/ROS 2 bag)")
+      ->required();
+  // Repeatable options take one value per occurrence (allow_extra_args(false)): by default
+  // CLI11 lets a vector option swallow the map paths after it (`--fixed a a.yaml b.yaml`).
+  pair->add_option("--topic", command.topics,
+                   "bags: the nav_msgs/OccupancyGrid topic to read (repeatable)")
+      ->allow_extra_args(false);
+  pair->add_option("-n", command.hypotheses, "number of hypotheses")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  pair->add_option("--threads", command.threads, "threads (0: all cores)")->capture_default_str();
+  pair->add_flag("--json", command.json, "print JSON instead of a table");
+  pair->add_option("--out", command.out_dir,
+                   "also write the merged map of the best hypothesis into this folder");
+  AddMethodOptions(*pair, command.options);
+
+  return pair;
+}
 
 int RunPairCommand(const PairCommand& command, std::ostream& out) {
   std::vector<JobMap> maps;

@@ -2,6 +2,7 @@
 // prints the ranked hypotheses (text or JSON) and optionally writes the merged map of the best.
 #pragma once
 
+#include <CLI/App.hpp>
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
@@ -22,6 +23,9 @@ struct PairCommand {
   std::optional<std::filesystem::path> out_dir;
   PairOptions options;
 };
+
+// The `pair` subcommand of `app` with its options, filling `command`.
+CLI::App* AddPairCommand(CLI::App& app, PairCommand& command);
 
 // Returns the process exit code; throws fleetmerge::Error for bad input.
 int RunPairCommand(const PairCommand& command, std::ostream& out);

@@ -164,5 +164,31 @@ TEST(CliVersion, FlagAndCommandPrintTheProjectVersion) {
   EXPECT_NE(testing::Fleetmerge("").exit_code, 0);
 }
 
+// The executable runs `pair` itself and loads libfleetmerge_commands.so for everything else
+// (cli/main.cpp): a copy of the executable alone still pairs, with the same output, and any other
+// command names the module it lacks.
+TEST_F(CliTest, PairNeedsNoCommandsModuleAndOtherCommandsNameIt) {
+  const std::filesystem::path alone = *dir_ / "alone" / "fleetmerge";
+  std::filesystem::create_directories(alone.parent_path());
+  std::filesystem::copy_file(FLEETMERGE_EXECUTABLE, alone,
+                             std::filesystem::copy_options::overwrite_existing);
+  const std::string args = " pair " + A() + " " + B() + " --json -n 3";
+  const auto with_module = Fleetmerge(args);
+  const auto run = testing::RunCommand(testing::ShellQuote(alone) + args);
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  EXPECT_EQ(run.out, with_module.out);
+
+  if (std::filesystem::exists(std::filesystem::path(FLEETMERGE_COMMANDS_INSTALL_DIR) /
+                              "libfleetmerge_commands.so")) {
+    GTEST_SKIP() << "an installed fleetmerge in " FLEETMERGE_COMMANDS_INSTALL_DIR
+                    " serves the copy: its missing-module message is not checked";
+  }
+  const auto version = testing::RunCommand(testing::ShellQuote(alone) + " --version");
+  EXPECT_EQ(version.exit_code, 1) << version.both();
+  EXPECT_NE(version.err.find("libfleetmerge_commands.so"), std::string::npos) << version.err;
+  EXPECT_NE(version.err.find("installation is incomplete"), std::string::npos) << version.err;
+  EXPECT_NE(version.err.find(alone.parent_path().string()), std::string::npos) << version.err;
+}
+
 }  // namespace
 }  // namespace fleetmerge

@@ -33,6 +33,9 @@ for f in /usr/bin/fleetmerge /usr/include/fleetmerge/fleetmerge.hpp /usr/include
   grep -qx "$f" "$tmp/files.txt" || fail "the package has no $f"
 done
 grep -q "^/usr/lib/$multiarch/libfleetmerge\.so\." "$tmp/files.txt" || fail "no libfleetmerge.so.*"
+# The commands beside `pair` (cli/main.cpp), loaded by the executable from here.
+grep -qx "/usr/lib/$multiarch/fleetmerge/libfleetmerge_commands.so" "$tmp/files.txt" ||
+  fail "no /usr/lib/$multiarch/fleetmerge/libfleetmerge_commands.so"
 grep -q '^/usr/lib/python3/dist-packages/fleetmerge/_fleetmerge.*\.so$' "$tmp/files.txt" ||
   fail "no Python extension module"
 [[ $(ldconfig -p) == *libfleetmerge.so.* ]] || fail "libfleetmerge not in the ldconfig cache"
