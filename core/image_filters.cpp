@@ -3,40 +3,80 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace fleetmerge {
 namespace {
 
-// out[x] = max of in[x - before .. x + after] within [0, n). Written as whole-row passes, one per
-// offset, so that the compiler vectorises them.
-template <typename T>
-void MaxAlongRow(const T* in, T* out, int n, int before, int after) {
-  std::copy(in, in + n, out);
-  for (int d = 1; d <= after; ++d) {
-    for (int x = 0; x + d < n; ++x) out[x] = std::max(out[x], in[x + d]);
+// out[x] = max of in[x - kBefore .. x + kAfter] within [0, n). The window is a compile-time
+// constant so that the interior loop is unrolled over it and vectorised over x.
+template <int kBefore, int kAfter, typename T>
+void MaxAlongRow(const T* in, T* out, int n) {
+  const auto clipped = [&](int x) {
+    T m = in[x];
+    for (int xx = std::max(0, x - kBefore); xx <= std::min(n - 1, x + kAfter); ++xx) {
+      m = std::max(m, in[xx]);
+    }
+    out[x] = m;
+  };
+  const int interior_end = std::max(kBefore, n - kAfter);
+  for (int x = 0; x < std::min(kBefore, n); ++x) clipped(x);
+  for (int x = kBefore; x < interior_end; ++x) {
+    T m = in[x - kBefore];
+    for (int d = 1 - kBefore; d <= kAfter; ++d) m = std::max(m, in[x + d]);
+    out[x] = m;
   }
-  for (int d = 1; d <= before; ++d) {
-    for (int x = d; x < n; ++x) out[x] = std::max(out[x], in[x - d]);
+  for (int x = interior_end; x < n; ++x) clipped(x);
+}
+
+// out[x] = max over rows[0 .. count)[x]; count is the window but at the image's top and bottom.
+template <int kWindow, typename T>
+void MaxAcrossRows(const T* const* rows, int count, T* out, int n) {
+  if (count == kWindow) {
+    for (int x = 0; x < n; ++x) {
+      T m = rows[0][x];
+      for (int i = 1; i < kWindow; ++i) m = std::max(m, rows[i][x]);
+      out[x] = m;
+    }
+    return;
+  }
+  std::copy(rows[0], rows[0] + n, out);
+  for (int i = 1; i < count; ++i) {
+    for (int x = 0; x < n; ++x) out[x] = std::max(out[x], rows[i][x]);
   }
 }
 
-template <typename T>
-cv::Mat_<T> MaxFilterOf(const cv::Mat_<T>& image, int before, int after) {
+}  // namespace
+
+// Separable: each input row's maximum along the row once, kept in a ring of the window's rows
+// (not a whole intermediate image: its fresh pages would cost as much as the filtering).
+template <int kBefore, int kAfter, typename T>
+cv::Mat_<T> MaxFilter(const cv::Mat_<T>& image) {
+  constexpr int kWindow = kBefore + kAfter + 1;
   const int w = image.cols, h = image.rows;
-  cv::Mat_<T> rows_max(h, w), out(h, w);
-  for (int y = 0; y < h; ++y) MaxAlongRow(image[y], rows_max[y], w, before, after);
+  cv::Mat_<T> out(h, w);
+  std::vector<T> ring(static_cast<std::size_t>(kWindow) * w);
+  const auto row_max = [&](int y) {
+    return ring.data() + static_cast<std::size_t>(y % kWindow) * w;
+  };
+  int next = 0;  // the next input row to take its row maximum of
   for (int y = 0; y < h; ++y) {
-    T* out_row = out[y];
-    std::copy(rows_max[y], rows_max[y] + w, out_row);
-    for (int yy = std::max(0, y - before); yy <= std::min(h - 1, y + after); ++yy) {
-      if (yy == y) continue;
-      const T* row = rows_max[yy];
-      for (int x = 0; x < w; ++x) out_row[x] = std::max(out_row[x], row[x]);
-    }
+    const int first = std::max(0, y - kBefore), last = std::min(h - 1, y + kAfter);
+    for (; next <= last; ++next) MaxAlongRow<kBefore, kAfter>(image[next], row_max(next), w);
+    const T* rows[kWindow];
+    for (int yy = first; yy <= last; ++yy) rows[yy - first] = row_max(yy);
+    MaxAcrossRows<kWindow>(rows, last - first + 1, out[y], w);
   }
   return out;
 }
+
+template cv::Mat1b MaxFilter<1, 1>(const cv::Mat1b&);
+template cv::Mat1f MaxFilter<1, 1>(const cv::Mat1f&);
+template cv::Mat1b MaxFilter<1, 2>(const cv::Mat1b&);
+
+namespace {
 
 // BORDER_REFLECT_101: -1 -> 1, n -> n - 2 (a 1-pixel axis reflects onto itself).
 int Reflect101(int p, int n) {
@@ -47,26 +87,27 @@ int Reflect101(int p, int n) {
 
 }  // namespace
 
-cv::Mat1b MaxFilter(const cv::Mat1b& image, int before, int after) {
-  return MaxFilterOf(image, before, after);
-}
-
-cv::Mat1f MaxFilter(const cv::Mat1f& image, int before, int after) {
-  return MaxFilterOf(image, before, after);
-}
-
 cv::Rect NonZeroBox(const cv::Mat1b& mask) {
+  constexpr int kWord = sizeof(std::uint64_t);
+  const auto zero_word = [](const std::uint8_t* p) {
+    std::uint64_t word;
+    std::memcpy(&word, p, kWord);
+    return word == 0;
+  };
   int x0 = mask.cols, x1 = -1, y0 = mask.rows, y1 = -1;
   for (int y = 0; y < mask.rows; ++y) {
     const std::uint8_t* row = mask[y];
-    const std::uint8_t* first =
-        std::find_if(row, row + mask.cols, [](std::uint8_t v) { return v; });
-    if (first == row + mask.cols) continue;
-    // The last non-zero pixel: from the right end, stopping at the first one found.
-    const std::uint8_t* last = row + mask.cols - 1;
-    while (*last == 0) --last;
-    x0 = std::min(x0, static_cast<int>(first - row));
-    x1 = std::max(x1, static_cast<int>(last - row));
+    // The first non-zero pixel, eight pixels at a time over the zero ones.
+    int first = 0;
+    while (first + kWord <= mask.cols && zero_word(row + first)) first += kWord;
+    while (first < mask.cols && row[first] == 0) ++first;
+    if (first == mask.cols) continue;
+    // The last one: from the right end, stopping at the first found.
+    int last = mask.cols - 1;
+    while (last + 1 - kWord > first && zero_word(row + last + 1 - kWord)) last -= kWord;
+    while (row[last] == 0) --last;
+    x0 = std::min(x0, first);
+    x1 = std::max(x1, last);
     y0 = std::min(y0, y);
     y1 = y;
   }
@@ -90,7 +131,8 @@ cv::Mat1f GaussianBlur5x5(const cv::Mat1f& image, double sigma) {
   std::vector<float> padded(w + 4);
   for (int y = 0; y < h; ++y) {
     const float* in = image[y];
-    for (int x = -2; x < w + 2; ++x) padded[x + 2] = in[Reflect101(x, w)];
+    std::copy(in, in + w, padded.begin() + 2);
+    for (const int x : {-2, -1, w, w + 1}) padded[x + 2] = in[Reflect101(x, w)];
     const float* s = padded.data() + 2;
     float* row_out = rows_blurred[y];
     for (int x = 0; x < w; ++x) {

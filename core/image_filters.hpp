@@ -12,12 +12,13 @@
 
 namespace fleetmerge {
 
-// out(y, x) = max of image(y + dy, x + dx) over dy, dx in [-before, after] that fall inside the
-// image: cv::dilate with a (before + after + 1)-square kernel anchored at (before, before) and a
-// border that adds nothing (its default, or BORDER_REPLICATE: a replicated pixel is one the
-// window already holds).
-cv::Mat1b MaxFilter(const cv::Mat1b& image, int before, int after);
-cv::Mat1f MaxFilter(const cv::Mat1f& image, int before, int after);
+// out(y, x) = max of image(y + dy, x + dx) over dy, dx in [-kBefore, kAfter] that fall inside
+// the image: cv::dilate with a (kBefore + kAfter + 1)-square kernel anchored at
+// (kBefore, kBefore) and a border that adds nothing (its default, or BORDER_REPLICATE: a
+// replicated pixel is one the window already holds). Instantiated for <1, 1> (Mat1b, Mat1f)
+// and <1, 2> (Mat1b).
+template <int kBefore, int kAfter, typename T>
+cv::Mat_<T> MaxFilter(const cv::Mat_<T>& image);
 
 // The smallest rectangle holding every non-zero pixel (cv::boundingRect of a mask); empty when
 // there is none. Scans each row from both ends, so a map's known interior is not visited.

@@ -26,7 +26,7 @@ struct CoarseLayers {
 };
 
 CoarseLayers OpenSpaceAround(cv::Mat1f walls, cv::Mat1f free) {
-  free.setTo(0.f, MaxFilter(walls, 1, 1) > 0.f);
+  free.setTo(0.f, MaxFilter<1, 1>(walls) > 0.f);
   return {walls, free};
 }
 

@@ -10,7 +10,7 @@ namespace fleetmerge {
 
 cv::Mat1b NearWallMask(const OccupancyGrid& grid) {
   const cv::Mat1b walls = grid.cells() == static_cast<std::uint8_t>(CellState::kOccupied);
-  return MaxFilter(walls, 1, 1);
+  return MaxFilter<1, 1>(walls);
 }
 
 double WallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb) {

@@ -40,13 +40,13 @@ TEST(ImageFilters, MaxFilterIsOpenCvsDilation) {
       cv::dilate(mask, expected_3x3, cv::Mat());
       cv::dilate(mask, expected_4x4, cv::Mat1b::ones(4, 4), cv::Point(1, 1), 1,
                  cv::BORDER_REPLICATE);
-      EXPECT_EQ(cv::countNonZero(MaxFilter(mask, 1, 1) != expected_3x3), 0) << size;
-      EXPECT_EQ(cv::countNonZero(MaxFilter(mask, 1, 2) != expected_4x4), 0) << size;
+      EXPECT_EQ(cv::countNonZero(MaxFilter<1, 1>(mask) != expected_3x3), 0) << size;
+      EXPECT_EQ(cv::countNonZero(MaxFilter<1, 2>(mask) != expected_4x4), 0) << size;
 
       const cv::Mat1f walls = RandomMask<float>(size, density, 1.f, &rng);
       cv::Mat1f expected_walls;
       cv::dilate(walls, expected_walls, cv::Mat());
-      EXPECT_EQ(cv::countNonZero(MaxFilter(walls, 1, 1) != expected_walls), 0) << size;
+      EXPECT_EQ(cv::countNonZero(MaxFilter<1, 1>(walls) != expected_walls), 0) << size;
     }
   }
 }
