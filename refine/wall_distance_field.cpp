@@ -53,7 +53,7 @@ WallDistanceField::WallDistanceField(const std::vector<Eigen::Vector2f>& walls,
   // Stencil rows floor(r) - 1 .. floor(r) + 2 (and columns): a 4 x 4 dilation anchored at
   // (1, 1) of the cells below the truncation value, the border replicated as the grid does.
   const cv::Mat1b near = distances_ < static_cast<float>(truncation_cells);
-  flat_ = MaxFilter(near, 1, 2) == 0;
+  flat_ = MaxFilter<1, 2>(near) == 0;
   grid_ = std::make_unique<Grid>(Grid{distances_.ptr<float>(), distances_.rows, distances_.cols});
   interpolator_ = std::make_unique<Interpolator>(*grid_);
 }
