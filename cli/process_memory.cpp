@@ -41,9 +41,10 @@ bool ReservationIsFree() {
 // - the block's first bytes up to a 2 MiB boundary cannot be a huge page, nor can the range the
 //   heap already reached (written before main): the block is shrunk to them and kept, so that
 //   nothing else is put there;
-// - the heap below the block holds free, never touched chunks before main runs (OctoMap's
-//   static initialisers allocate and free ~1.3 MB of ray buffers): they are taken and kept too,
-//   or the first maps loaded land on them, 4 KiB at a time (~270 faults in a pair process).
+// - the heap below the block may hold free, never touched chunks when main runs (a library's
+//   static initialiser that allocates and frees: OctoMap's free ~1.3 MB of ray buffers, though
+//   OctoMap is now loaded with the commands module, after this runs): they are taken and kept
+//   too, or the first maps loaded would land on them, 4 KiB at a time.
 // What is kept is address space only: nothing writes to it but the allocator's headers.
 constexpr int kMaxKeptBlocks = 64;
 void* kept_blocks[kMaxKeptBlocks];  // reachable, so never reported as a leak
