@@ -4,8 +4,9 @@
 // Why not OpenCV's imgproc (cv::dilate, cv::boundingRect, cv::GaussianBlur): loading
 // libopencv_imgproc costs every process about 3.5 ms before main on the CI machine (its
 // initialisers fill ~500 KB of interpolation tables; docs/speed.md, "Where the time goes now"),
-// and these are all the pair search used of it. tests/core/image_filters_test checks each filter
-// against imgproc.
+// and these are all the pair search used of it. On the search's small coarse images they also
+// skip imgproc's per-call set-up (docs/speed.md, "How the work is shared").
+// tests/core/image_filters_test checks each filter against imgproc.
 #pragma once
 
 #include <opencv2/core.hpp>
