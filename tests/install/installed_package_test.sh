@@ -7,7 +7,8 @@ rm -rf "$tmp" && mkdir -p "$tmp"
 prefix=$tmp/prefix
 
 cmake --install "$build" --prefix "$prefix" > "$tmp/install.log"
-for f in bin/fleetmerge include/fleetmerge/fleetmerge.hpp include/fleetmerge/version.hpp \
+for f in bin/fleetmerge "$libdir/fleetmerge/libfleetmerge_commands.so" \
+         include/fleetmerge/fleetmerge.hpp include/fleetmerge/version.hpp \
          "$libdir/cmake/fleetmerge/fleetmergeConfig.cmake" \
          "$libdir/cmake/fleetmerge/fleetmergeConfigVersion.cmake"; do
   [ -e "$prefix/$f" ] || { echo "FAIL: the install has no $f"; exit 1; }
@@ -22,6 +23,18 @@ cmake -S "$source/examples/cpp_consumer" -B "$tmp/consumer" -DCMAKE_PREFIX_PATH=
   -DCMAKE_BUILD_TYPE=Release > "$tmp/consumer_configure.log"
 cmake --build "$tmp/consumer" > "$tmp/consumer_build.log"
 consumer=$tmp/consumer/merge_fleet
+
+# The installed command looks for its commands module relative to itself
+# (cli/commands_module.hpp): with the module set aside, its error names the prefix's path (unless
+# a fleetmerge installed in the configured prefix serves it, which is said).
+mv "$prefix/$libdir/fleetmerge" "$prefix/$libdir/fleetmerge.aside"
+if "$prefix/bin/fleetmerge" --version > "$tmp/no_module.txt" 2>&1; then
+  grep -q "^fleetmerge " "$tmp/no_module.txt" && echo "note: another installed module served the prefix's command"
+else
+  grep -q "$prefix/bin/../$libdir/fleetmerge/libfleetmerge_commands.so" "$tmp/no_module.txt" ||
+    { cat "$tmp/no_module.txt"; echo "FAIL: the missing-module error names no prefix path"; exit 1; }
+fi
+mv "$prefix/$libdir/fleetmerge.aside" "$prefix/$libdir/fleetmerge"
 
 # The header's version macros, the library's Version() and the installed command agree.
 "$consumer" version
