@@ -16,6 +16,7 @@
 #include "cli/merge_command.hpp"
 #include "cli/pair_command.hpp"
 #include "cli/process_memory.hpp"
+#include "cli/process_threads.hpp"
 #include "cli/simulate_command.hpp"
 
 namespace fleetmerge {
@@ -196,5 +197,8 @@ int RunAllCommands(int argc, char** argv) {
 }  // namespace fleetmerge
 
 extern "C" int fleetmerge_run_all_commands(int argc, char** argv) {
+  // The executable set this for its own copy of OpenCV core (cli/CMakeLists.txt); the module
+  // computes with the shared library's.
+  fleetmerge::RunOpenCvOnTheCallingThread();
   return fleetmerge::RunAllCommands(argc, argv);
 }

@@ -2,7 +2,8 @@
 // --version run in libfleetmerge_commands.so (cli/all_commands.hpp), loaded when needed.
 //
 // Why two parts: the executable is linked --as-needed, so it loads only what the pair path uses
-// (OpenCV's core, yaml-cpp, libspng, zlib). The rest of the tool also loads OpenCV's imgproc
+// (yaml-cpp, libspng, zlib, TBB; OpenCV core is linked in from its static archive,
+// cli/CMakeLists.txt). The rest of the tool also loads OpenCV's imgproc
 // (the simulator), Ceres' sparse solvers with glog, BLAS and LAPACK (the pose graph) and OctoMap:
 // ~8 ms more start-up on the CI machine, a fifth of a pair process (docs/speed.md, "Where the
 // time goes now"). Any other command loads the same libraries as one executable would, plus the

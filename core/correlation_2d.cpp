@@ -20,7 +20,7 @@ FixedImageCorrelator::FixedImageCorrelator(const std::vector<cv::Mat1f>& a_layer
                        cv::getOptimalDFTSize(a_size_.height + max_b_size.height - 1));
   for (const cv::Mat1f& a : a_layers) {
     if (a.size() != a_size_) throw Error("FixedImageCorrelator: fixed layers differ in size");
-    cv::Mat1f padded = cv::Mat1f::zeros(dft_size_);
+    cv::Mat1f padded(dft_size_, 0.f);
     a.copyTo(padded(cv::Rect(0, 0, a.cols, a.rows)));
     a_spectra_.emplace_back();
     cv::dft(padded, a_spectra_.back(), 0, a.rows);
@@ -101,7 +101,7 @@ FixedImageCorrelator FixedImageCorrelator::WithOwnBuffers() const {
 }
 
 cv::Mat1f CrossCorrelateDirect(const cv::Mat1f& a, const cv::Mat1f& b) {
-  cv::Mat1f out = cv::Mat1f::zeros(a.rows + b.rows - 1, a.cols + b.cols - 1);
+  cv::Mat1f out(a.rows + b.rows - 1, a.cols + b.cols - 1, 0.f);
   for (int r = 0; r < out.rows; ++r) {
     for (int c = 0; c < out.cols; ++c) {
       const int dy = r - (b.rows - 1);

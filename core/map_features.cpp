@@ -4,6 +4,7 @@
 #include <opencv2/core.hpp>
 
 #include "core/hough_spectrum.hpp"
+#include "core/image_masks.hpp"
 #include "core/point_sampling.hpp"
 #include "core/wall_agreement.hpp"
 
@@ -18,9 +19,9 @@ MapFeatures::MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& opt
   }
   const double known = cv::countNonZero(grid.cells());  // kUnknown is 0
   if (known > 0) {
-    near_wall_share = cv::countNonZero(near_walls & (grid.cells() != 0)) / known;
-    occupied_share =
-        cv::countNonZero(grid.cells() == static_cast<std::uint8_t>(CellState::kOccupied)) / known;
+    near_wall_share =
+        cv::countNonZero(MaskAnd(near_walls, CompareMask(grid.cells(), cv::CMP_NE, 0))) / known;
+    occupied_share = grid.Count(CellState::kOccupied) / known;
   }
   spectra_points = SamplePoints(occupied, options.spectra_sampling);
   if (!occupied.empty()) {

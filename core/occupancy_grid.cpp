@@ -3,6 +3,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/image_masks.hpp"
 
 namespace fleetmerge {
 
@@ -38,7 +39,9 @@ std::vector<Eigen::Array2i> OccupancyGrid::CellsIn(CellState state) const {
 }
 
 int OccupancyGrid::Count(CellState state) const {
-  return cells_.empty() ? 0 : cv::countNonZero(cells_ == static_cast<std::uint8_t>(state));
+  return cells_.empty()
+             ? 0
+             : cv::countNonZero(CompareMask(cells_, cv::CMP_EQ, static_cast<int>(state)));
 }
 
 }  // namespace fleetmerge

@@ -8,6 +8,7 @@
 
 #include "core/error.hpp"
 #include "core/image_filters.hpp"
+#include "core/image_masks.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -26,13 +27,13 @@ struct CoarseLayers {
 };
 
 CoarseLayers OpenSpaceAround(cv::Mat1f walls, cv::Mat1f free) {
-  free.setTo(0.f, MaxFilter<1, 1>(walls) > 0.f);
+  free.setTo(0.f, CompareMask(MaxFilter<1, 1>(walls), cv::CMP_GT, 0.0));
   return {walls, free};
 }
 
 CoarseLayers CoarseGridLayers(const OccupancyGrid& a, int pooling) {
   const int w = (a.width() + pooling - 1) / pooling, h = (a.height() + pooling - 1) / pooling;
-  cv::Mat1f walls = cv::Mat1f::zeros(h, w), free = cv::Mat1f::zeros(h, w);
+  cv::Mat1f walls(h, w, 0.f), free(h, w, 0.f);
   // Pixel by pixel (a block of `pooling` cells of a row at a time), not cell by cell with two
   // divisions each.
   for (int j = 0; j < a.height(); ++j) {
@@ -60,7 +61,8 @@ CoarseLayers CoarseGridLayers(const OccupancyGrid& a, int pooling) {
 std::vector<cv::Mat1f> FixedLayers(const OccupancyGrid& a, int pooling, double free_penalty,
                                    cv::Point* offset_px) {
   const CoarseLayers layers = CoarseGridLayers(a, pooling);
-  cv::Rect known = NonZeroBox((layers.walls > 0.f) | (layers.open > 0.f));
+  cv::Rect known = NonZeroBox(MaskOr(CompareMask(layers.walls, cv::CMP_GT, 0.0),
+                                     CompareMask(layers.open, cv::CMP_GT, 0.0)));
   *offset_px = cv::Point(0, 0);
   if (known.area() > 0) {
     constexpr int kMargin = 3;  // the 5 x 5 blur reaches 2 pixels, the wall dilation 1
@@ -73,7 +75,18 @@ std::vector<cv::Mat1f> FixedLayers(const OccupancyGrid& a, int pooling, double f
   }
   // The blur widens the peak so a rotation off by a fraction of a degree still correlates.
   const cv::Mat1f wall_score = GaussianBlur5x5(layers.walls, 1.0);
-  const cv::Mat1f score = wall_score - free_penalty * layers.open;
+  // score = wall_score - free_penalty * open, fused as cv::scaleAdd does it (whose object file
+  // would bring OpenCV's PCA and LAPACK into the executable: core/image_masks.hpp).
+  cv::Mat1f score(wall_score.size());
+  const float minus_penalty = static_cast<float>(-free_penalty);
+  for (int j = 0; j < score.rows; ++j) {
+    const float* open_row = layers.open.ptr<float>(j);
+    const float* wall_row = wall_score.ptr<float>(j);
+    float* score_row = score.ptr<float>(j);
+    for (int i = 0; i < score.cols; ++i) {
+      score_row[i] = std::fma(open_row[i], minus_penalty, wall_row[i]);
+    }
+  }
   return {score(known).clone(), layers.walls(known).clone()};
 }
 
@@ -194,8 +207,8 @@ CorrelationTranslation::BLayers CorrelationTranslation::RasterizeB(
   const int h = std::min(max_b_size_.height, size.height);
   const float pooling = static_cast<float>(pooling_);
   const auto rasterize = [&](const std::vector<Eigen::Vector2f>& points) {
-    cv::Mat1f image = cv::Mat1f::zeros(h, w);
-    float* pixels = image.ptr<float>(0);  // zeros() is continuous
+    cv::Mat1f image(h, w, 0.f);
+    float* pixels = image.ptr<float>(0);  // a new matrix is continuous
     // Pixel indices for a chunk of points (a loop the compiler vectorises), then the stores.
     constexpr std::size_t kChunk = 1024;
     std::array<int, kChunk> index;
@@ -213,8 +226,9 @@ CorrelationTranslation::BLayers CorrelationTranslation::RasterizeB(
   };
   const CoarseLayers b_layers = OpenSpaceAround(rasterize(walls), rasterize(free));
   // b's scored walls against a's score layer, minus a's walls on b's open space.
-  return {{&scored_walls == &walls ? b_layers.walls : rasterize(scored_walls),
-           static_cast<cv::Mat1f>(-options_.free_penalty * b_layers.open)},
+  cv::Mat1f penalised_open;
+  b_layers.open.convertTo(penalised_open, CV_32F, -options_.free_penalty);
+  return {{&scored_walls == &walls ? b_layers.walls : rasterize(scored_walls), penalised_open},
           q_min};
 }
 

@@ -4,13 +4,14 @@
 #include <cmath>
 
 #include "core/image_filters.hpp"
+#include "core/image_masks.hpp"
 #include "core/point_sampling.hpp"  // OccupiedCellCenters
 
 namespace fleetmerge {
 
 cv::Mat1b NearWallMask(const OccupancyGrid& grid) {
-  const cv::Mat1b walls = grid.cells() == static_cast<std::uint8_t>(CellState::kOccupied);
-  return MaxFilter<1, 1>(walls);
+  return MaxFilter<1, 1>(
+      CompareMask(grid.cells(), cv::CMP_EQ, static_cast<int>(CellState::kOccupied)));
 }
 
 double WallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.hpp"
+#include "core/image_masks.hpp"
 #include "io/image_header.hpp"
 #include "io/png_image.hpp"
 #include "io/pnm_header.hpp"
@@ -50,7 +51,7 @@ MapImage Normalise(const cv::Mat& raw, double scale) {
   for (int c = 1; c < colour_channels; ++c) image.value += channels[c];
   image.value /= colour_channels;  // map_server: mean of the colour channels
   image.opaque = cv::Mat1b(raw.size(), 1);
-  if (has_alpha) image.opaque.setTo(0, channels.back() == 0);
+  if (has_alpha) image.opaque.setTo(0, CompareMask(channels.back(), cv::CMP_EQ, 0));
   return image;
 }
 

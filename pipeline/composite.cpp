@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/image_filters.hpp"
+#include "core/image_masks.hpp"
 #include "core/parallel.hpp"
 
 namespace fleetmerge {
@@ -225,8 +226,8 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
   const cv::Size size(geometry.width(), geometry.height());
   const InputSampler sampler(inputs, geometry);
   OccupancyGrid merged(geometry);
-  cv::Mat1w occupied_count = cv::Mat1w::zeros(size);
-  cv::Mat1w free_count = cv::Mat1w::zeros(size);
+  cv::Mat1w occupied_count(size, 0);
+  cv::Mat1w free_count(size, 0);
   cv::Mat1b sampled(size);  // scratch; only each input's region is touched
   // Each band of rows is fused from every input's part in it; the bands touch disjoint rows.
   constexpr int kBandRows = 64;
@@ -238,9 +239,9 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
       const cv::Rect region = sampler.Sample(k, band, sampled);
       if (region.area() == 0) continue;
       cv::add(occupied_count(region), 1, occupied_count(region),
-              sampled(region) == static_cast<std::uint8_t>(CellState::kOccupied));
+              CompareMask(sampled(region), cv::CMP_EQ, static_cast<int>(CellState::kOccupied)));
       cv::add(free_count(region), 1, free_count(region),
-              sampled(region) == static_cast<std::uint8_t>(CellState::kFree));
+              CompareMask(sampled(region), cv::CMP_EQ, static_cast<int>(CellState::kFree)));
     }
     for (int j = band.y; j < band.y + band.height; ++j) {
       const std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/image_filters.hpp"
+#include "core/image_masks.hpp"
 #include "core/point_sampling.hpp"
 
 namespace fleetmerge {
@@ -52,8 +53,8 @@ WallDistanceField::WallDistanceField(const std::vector<Eigen::Vector2f>& walls,
   }
   // Stencil rows floor(r) - 1 .. floor(r) + 2 (and columns): a 4 x 4 dilation anchored at
   // (1, 1) of the cells below the truncation value, the border replicated as the grid does.
-  const cv::Mat1b near = distances_ < static_cast<float>(truncation_cells);
-  flat_ = MaxFilter<1, 2>(near) == 0;
+  const cv::Mat1b near = CompareMask(distances_, cv::CMP_LT, static_cast<float>(truncation_cells));
+  flat_ = CompareMask(MaxFilter<1, 2>(near), cv::CMP_EQ, 0);
   grid_ = std::make_unique<Grid>(Grid{distances_.ptr<float>(), distances_.rows, distances_.cols});
   interpolator_ = std::make_unique<Interpolator>(*grid_);
 }

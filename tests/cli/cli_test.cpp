@@ -190,5 +190,30 @@ TEST_F(CliTest, PairNeedsNoCommandsModuleAndOtherCommandsNameIt) {
   EXPECT_NE(version.err.find(alone.parent_path().string()), std::string::npos) << version.err;
 }
 
+// The executable holds its own copy of OpenCV core, from the static archive (cli/CMakeLists.txt):
+// it loads neither OpenCV's shared library nor what that library loads (LAPACK, BLAS, the Fortran
+// runtime, GLX and X11), and it exports none of OpenCV's symbols, so the commands module and the
+// shared OpenCV it loads cannot bind to the executable's copy.
+TEST(CliExecutable, HoldsItsOwnOpenCvCoreAndExportsNoneOfIt) {
+  if (!FLEETMERGE_STATIC_OPENCV_CORE) {
+    GTEST_SKIP() << "OpenCV core's static archive was not found at configure time: the "
+                    "executable links the shared library";
+  }
+  const auto libraries = testing::RunCommand("ldd " FLEETMERGE_EXECUTABLE);
+  ASSERT_EQ(libraries.exit_code, 0) << libraries.both();
+  for (const char* absent : {"libopencv", "liblapack", "libblas", "libgfortran", "libGLX", "libX11",
+                             "libceres", "liboctomap"}) {
+    EXPECT_EQ(libraries.out.find(absent), std::string::npos) << absent << " in\n" << libraries.out;
+  }
+  const auto exported = testing::RunCommand("nm -D --defined-only " FLEETMERGE_EXECUTABLE);
+  ASSERT_EQ(exported.exit_code, 0) << exported.both();
+  // Itanium mangling: cv:: names hold "N2cv" (nested, also in vtables and typeinfo) or "K2cv".
+  std::istringstream lines(exported.out);
+  for (std::string line; std::getline(lines, line);) {
+    EXPECT_FALSE(std::regex_search(line, std::regex("[NK]2cv|glX"))) << line;
+  }
+  // That both copies compute the same pair: PairNeedsNoCommandsModuleAndOtherCommandsNameIt.
+}
+
 }  // namespace
 }  // namespace fleetmerge
