@@ -6,6 +6,16 @@ set(FLEETMERGE_CONTACT "fleetmerge maintainers <maintainers@users.noreply.h-seed
 
 # Debian's copyright file, machine-readable: the package's licence (SPDX Apache-2.0).
 install(FILES ${CMAKE_CURRENT_LIST_DIR}/debian/copyright DESTINATION ${CMAKE_INSTALL_DOCDIR})
+# The code linked statically into the binaries ships with its notices (the BSD licences ask a
+# binary distribution to reproduce them): the Debian copyright file of each archive's package,
+# as third-party/<package>.copyright (docs/licenses.md, "What the Debian package's binaries
+# link").
+foreach(package libceres-dev libopencv-core-dev liblz4-dev libzstd-dev libsqlite3-dev libbz2-dev)
+  if(EXISTS /usr/share/doc/${package}/copyright)
+    install(FILES /usr/share/doc/${package}/copyright
+      DESTINATION ${CMAKE_INSTALL_DOCDIR}/third-party RENAME ${package}.copyright)
+  endif()
+endforeach()
 
 set(CPACK_GENERATOR DEB)
 set(CPACK_PACKAGE_NAME fleetmerge)

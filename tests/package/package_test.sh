@@ -36,6 +36,11 @@ grep -q "^/usr/lib/$multiarch/libfleetmerge\.so\." "$tmp/files.txt" || fail "no 
 # The commands beside `pair` (cli/main.cpp), loaded by the executable from here.
 grep -qx "/usr/lib/$multiarch/fleetmerge/libfleetmerge_commands.so" "$tmp/files.txt" ||
   fail "no /usr/lib/$multiarch/fleetmerge/libfleetmerge_commands.so"
+# The notices of the code linked statically into the binaries (cmake/FleetmergeDebianPackage.cmake).
+for package in libceres-dev libopencv-core-dev liblz4-dev libzstd-dev libsqlite3-dev libbz2-dev; do
+  grep -qx "/usr/share/doc/fleetmerge/third-party/$package.copyright" "$tmp/files.txt" ||
+    fail "the package has no /usr/share/doc/fleetmerge/third-party/$package.copyright"
+done
 grep -q '^/usr/lib/python3/dist-packages/fleetmerge/_fleetmerge.*\.so$' "$tmp/files.txt" ||
   fail "no Python extension module"
 [[ $(ldconfig -p) == *libfleetmerge.so.* ]] || fail "libfleetmerge not in the ldconfig cache"
