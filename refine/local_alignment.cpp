@@ -150,13 +150,13 @@ LocalAlignmentResult RefineAlignment(const AlignmentTarget& a, const AlignmentTa
     result.converged = true;
     return result;
   }
-  // TinySolver stops on an absolute change of 2 x cost; Ceres' relative 1e-6 of the cost is
-  // kept by scaling it with the starting cost.
+  // TinySolver stops on an absolute change of 2 x cost, so the relative tolerance is scaled by
+  // the starting cost (the refinement starts near its minimum: the cost falls by ~1 %).
   Eigen::VectorXd start(n);
   residuals(pose.data(), start.data(), nullptr);
   ceres::TinySolver<WallDistanceResiduals> solver;
   solver.options.max_num_iterations = options.max_iterations + 1;  // counts the first evaluation
-  solver.options.function_tolerance = 1e-6 * start.squaredNorm();
+  solver.options.function_tolerance = options.function_tolerance * start.squaredNorm();
   const auto& summary = solver.Solve(residuals, &pose);
 
   result.T_ga_gb = Pose2(pose[0], pose[1], pose[2]);

@@ -21,6 +21,8 @@ struct LocalAlignmentOptions {
   int max_points = 1000;  // wall cells used per map (every k-th), bounds the cost
   int max_iterations = 20;
   double loss_scale_cells = 1.0;  // Cauchy scale: residuals beyond ~1 cell are outliers
+  // Levenberg-Marquardt stops when a step lowers the cost by less than this share of it.
+  double function_tolerance = 1e-6;
 };
 
 // What one map contributes to alignments: its truncated wall distance field and its wall cells

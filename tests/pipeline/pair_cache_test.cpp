@@ -241,6 +241,20 @@ TEST_F(PairCacheTest, PairOptionsThatChangeHypothesesMissTheCache) {
   EXPECT_EQ(decisions.pairs_cached, 3);
 }
 
+TEST(PairOptionsDigest, ChangesWithEveryRefinementSetting) {
+  const PairOptions defaults;
+  const ContentDigest digest = PairOptionsDigest(defaults, kVersion);
+  for (LocalAlignmentOptions PairOptions::*stage :
+       {&PairOptions::quick_refine, &PairOptions::final_refine}) {
+    PairOptions o = defaults;
+    (o.*stage).function_tolerance *= 0.1;
+    EXPECT_NE(PairOptionsDigest(o, kVersion), digest);
+    o = defaults;
+    (o.*stage).loss_scale_cells *= 2.0;
+    EXPECT_NE(PairOptionsDigest(o, kVersion), digest);
+  }
+}
+
 TEST_F(PairCacheTest, TheCacheIsReleasedOnceThePairsAreDone) {
   PairCache cache(dir_, kVersion, {});
   const FleetResult result = MergeFleet(FirstMaps(fleet_, 3), 0, options_, {}, &cache);
