@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 
 #include "core/hypothesis_generator.hpp"
 #include "io/map_io.hpp"
