@@ -68,8 +68,7 @@ ContentDigest PairOptionsDigest(const PairOptions& o, const std::string& version
   // 2: the refinement solved with ceres::TinySolver (refine/local_alignment.cpp).
   // 3: the translation search's 5 x 5 blur by core/image_filters (float rounding differs from
   //    OpenCV's; refined poses move by ~1e-6 m).
-  // 4: the final refinement's function tolerance 1e-7 (PairOptions::final_refine).
-  constexpr int kPairResultsRevision = 4;
+  constexpr int kPairResultsRevision = 3;
   AppendField(bytes, "pair_results_revision", kPairResultsRevision);
   AppendField(bytes, "hough.n_theta", h.hough.n_theta);
   AppendField(bytes, "hough.rho_step_cells", h.hough.rho_step_cells);

@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -18,6 +17,7 @@
 #include "sim/ground_truth_pair.hpp"
 #include "sim/simulation.hpp"
 #include "tests/support/shared_data.hpp"
+#include "tests/support/simulated_pairs.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -39,14 +39,9 @@ bool IsTrue(const OccupancyGrid& b, const PairHypothesis& h, const Pose2& T_a_b_
 }
 
 void Score(const SimulatedCase& sim, const std::string& label, Tally& tally) {
-  std::map<std::string, int> index;
-  for (std::size_t m = 0; m < sim.names.size(); ++m) index[sim.names[m]] = static_cast<int>(m);
-  const std::int64_t min_overlap = FleetOptions{}.min_overlap_cells;
-  for (const TruthOverlap& o : sim.truth.overlaps) {
-    if (o.cells < min_overlap) continue;
-    const int a = index.at(o.a), b = index.at(o.b);
-    const Pose2 T_true =
-        sim.truth.maps[a].T_building_map.inverse() * sim.truth.maps[b].T_building_map;
+  for (const testing::TruePair& pair : testing::TruePairs(sim, FleetOptions{}.min_overlap_cells)) {
+    const int a = pair.a, b = pair.b;
+    const Pose2& T_true = pair.T_a_b;
     const PairResult r = MergePair(sim.maps[a], sim.maps[b], PairOptions{});
     ++tally.pairs;
     tally.ambiguous += r.ambiguous;
@@ -76,8 +71,8 @@ void Score(const SimulatedCase& sim, const std::string& label, Tally& tally) {
     std::printf(
         "[ lost ] %s %s-%s: true pose is hypothesis %d (omega %.4f, %lld cells, walls "
         "%.3f) behind omega %.4f (%lld cells, walls %.3f); ambiguous %d margin %.2f\n",
-        label.c_str(), o.a.c_str(), o.b.c_str(), k_true + 1, r.hypotheses[k_true].omega,
-        static_cast<long long>(r.hypotheses[k_true].overlap_cells),
+        label.c_str(), sim.names[a].c_str(), sim.names[b].c_str(), k_true + 1,
+        r.hypotheses[k_true].omega, static_cast<long long>(r.hypotheses[k_true].overlap_cells),
         r.hypotheses[k_true].wall_agreement, r.hypotheses[0].omega,
         static_cast<long long>(r.hypotheses[0].overlap_cells), r.hypotheses[0].wall_agreement,
         r.ambiguous, r.margin_nats);

@@ -246,12 +246,15 @@ TEST(PairOptionsDigest, ChangesWithEveryRefinementSetting) {
   const ContentDigest digest = PairOptionsDigest(defaults, kVersion);
   for (LocalAlignmentOptions PairOptions::*stage :
        {&PairOptions::quick_refine, &PairOptions::final_refine}) {
-    PairOptions o = defaults;
-    (o.*stage).function_tolerance *= 0.1;
-    EXPECT_NE(PairOptionsDigest(o, kVersion), digest);
-    o = defaults;
-    (o.*stage).loss_scale_cells *= 2.0;
-    EXPECT_NE(PairOptionsDigest(o, kVersion), digest);
+    const auto changed = [&](const auto& change) {
+      PairOptions o = defaults;
+      change(o.*stage);
+      return PairOptionsDigest(o, kVersion) != digest;
+    };
+    EXPECT_TRUE(changed([](LocalAlignmentOptions& a) { a.max_points += 1; }));
+    EXPECT_TRUE(changed([](LocalAlignmentOptions& a) { a.max_iterations += 1; }));
+    EXPECT_TRUE(changed([](LocalAlignmentOptions& a) { a.loss_scale_cells *= 2.0; }));
+    EXPECT_TRUE(changed([](LocalAlignmentOptions& a) { a.function_tolerance *= 0.1; }));
   }
 }
 

@@ -17,6 +17,7 @@
 #include "job/pair_options.hpp"
 #include "sim/simulation.hpp"
 #include "tests/support/shared_data.hpp"
+#include "tests/support/simulated_pairs.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -46,32 +47,24 @@ TEST(LocalAlignment, TighterToleranceEndsNearerTheMinimum) {
   std::uniform_real_distribution<double> offset(-1.5, 1.5), turn(-0.02, 0.02);
   double loose_sum = 0.0, tight_sum = 0.0;
   int pairs = 0;
-  for (const TruthOverlap& overlap : sim.truth.overlaps) {
-    if (overlap.cells < 5000) continue;
-    std::size_t ia = 0, ib = 0;
-    for (std::size_t m = 0; m < sim.names.size(); ++m) {
-      if (sim.names[m] == overlap.a) ia = m;
-      if (sim.names[m] == overlap.b) ib = m;
-    }
-    const OccupancyGrid& map_a = sim.maps[ia];
-    const OccupancyGrid& map_b = sim.maps[ib];
-    const Pose2 T_a_b =
-        sim.truth.maps[ia].T_building_map.inverse() * sim.truth.maps[ib].T_building_map;
-    const Pose2 start = CellPoseFromMapPose(map_a.geometry(), map_b.geometry(), T_a_b) *
+  for (const testing::TruePair& pair : testing::TruePairs(sim, 5000)) {
+    const OccupancyGrid& map_a = sim.maps[pair.a];
+    const OccupancyGrid& map_b = sim.maps[pair.b];
+    const Pose2 start = CellPoseFromMapPose(map_a.geometry(), map_b.geometry(), pair.T_a_b) *
                         Pose2(offset(rng), offset(rng), turn(rng));
     const AlignmentTarget a(map_a, pair_options.refine_truncation_cells);
     const AlignmentTarget b(map_b, pair_options.refine_truncation_cells);
     const LocalAlignmentResult r_loose = RefineAlignment(a, b, start, loose);
     const LocalAlignmentResult r_tight = RefineAlignment(a, b, start, tight);
     const LocalAlignmentResult r_best = RefineAlignment(a, b, start, exhaustive);
-    const std::string pair = overlap.a + "-" + overlap.b;
-    ASSERT_TRUE(r_loose.converged && r_tight.converged && r_best.converged) << pair;
+    const std::string name = sim.names[pair.a] + "-" + sim.names[pair.b];
+    ASSERT_TRUE(r_loose.converged && r_tight.converged && r_best.converged) << name;
     // The same steps, continued: never a higher cost.
-    EXPECT_LE(r_tight.cost, r_loose.cost) << pair;
-    EXPECT_LE(r_best.cost, r_tight.cost) << pair;
+    EXPECT_LE(r_tight.cost, r_loose.cost) << name;
+    EXPECT_LE(r_best.cost, r_tight.cost) << name;
     const double loose_cells = PoseDistanceCells(r_loose.T_ga_gb, r_best.T_ga_gb);
     const double tight_cells = PoseDistanceCells(r_tight.T_ga_gb, r_best.T_ga_gb);
-    std::printf("[ %s ] from the minimum: 1e-6 %.4f cells, 1e-7 %.4f cells\n", pair.c_str(),
+    std::printf("[ %s ] from the minimum: 1e-6 %.4f cells, 1e-7 %.4f cells\n", name.c_str(),
                 loose_cells, tight_cells);
     loose_sum += loose_cells;
     tight_sum += tight_cells;
