@@ -78,18 +78,33 @@ std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
                       static_cast<int>(std::count(needed.begin(), needed.end(), 1)));
   }
   if (progress && cached_count > 0) progress("pairs", cached_count, total);
-  // Each map's own work once, shared by its maps.size() - 1 pairs (pipeline/prepared_map.hpp);
-  // only for the maps of pairs still to compute.
+  // Each map's own work once, shared by its pairs (pipeline/prepared_map.hpp): made by the first
+  // pair that needs it and freed after its last one. A re-run that pairs one new map with N
+  // cached ones then holds the new map and one old map per thread, not N + 1 prepared maps of
+  // 3-5 MB each, and its threads reuse the freed memory instead of faulting in fresh pages.
   std::vector<std::unique_ptr<PreparedMap>> prepared(maps.size());
-  ParallelFor(maps.size(), threads, [&](std::size_t m) {
-    if (needed[m]) prepared[m] = std::make_unique<PreparedMap>(maps[m], options);
-  });
+  std::vector<std::once_flag> made(maps.size());
+  std::vector<std::atomic<int>> pairs_left(maps.size());
+  for (const std::size_t k : missing) {
+    ++pairs_left[jobs[k].first];
+    ++pairs_left[jobs[k].second];
+  }
+  const auto prepare = [&](int m) {
+    std::call_once(made[m], [&] { prepared[m] = std::make_unique<PreparedMap>(maps[m], options); });
+  };
+  const auto release = [&](int m) {
+    if (--pairs_left[m] == 0) prepared[m].reset();
+  };
   std::atomic<int> done{cached_count};
   std::mutex progress_mutex;
   ParallelFor(missing.size(), threads, [&](std::size_t i) {
     const std::size_t k = missing[i];
     const auto [a, b] = jobs[k];
+    prepare(a);
+    prepare(b);
     outcomes[k] = ComputePair(prepared, a, b, options);
+    release(a);
+    release(b);
     if (cache) cache->StorePair(options_digest, digests[a], digests[b], outcomes[k]);
     const int finished = ++done;
     if (progress) {
