@@ -7,7 +7,6 @@
 
 #include "core/error.hpp"
 #include "core/image_filters.hpp"
-#include "core/image_masks.hpp"
 #include "core/parallel.hpp"
 
 namespace fleetmerge {
@@ -90,13 +89,21 @@ void SampleRegion(const CompositeInput& input, const CellAffine& affine, const c
     int i_begin = region.x, i_end = region.x + region.width;
     ClipRowToInput(row_start.x(), affine.step_i.x(), width, &i_begin, &i_end);
     ClipRowToInput(row_start.y(), affine.step_i.y(), height, &i_begin, &i_end);
+    // u = row_start + i * step_i, not a running sum: no drift along long rows.
+    const auto u_of = [&](int i) -> Eigen::Vector2d {
+      return {row_start.x() + i * affine.step_i.x(), row_start.y() + i * affine.step_i.y()};
+    };
+    const auto inside = [&](const Eigen::Vector2d& u) {
+      return u.x() >= 0.0 && u.y() >= 0.0 && u.x() < width && u.y() < height;
+    };
+    // Each coordinate is monotonic in i (so is each rounding step of its sum), so the centres
+    // inside the input are one run of i: trim the widened ends to it, then the loop needs no
+    // test, and with u >= 0 the int cast equals floor.
+    while (i_begin < i_end && !inside(u_of(i_begin))) ++i_begin;
+    while (i_end > i_begin && !inside(u_of(i_end - 1))) --i_end;
     for (int i = i_begin; i < i_end; ++i) {
-      // u = row_start + i * step_i, not a running sum: no drift along long rows.
-      const double ux = row_start.x() + i * affine.step_i.x();
-      const double uy = row_start.y() + i * affine.step_i.y();
-      // Range check before the int cast, so truncation equals floor (both are >= 0 here).
-      if (!(ux >= 0.0 && uy >= 0.0 && ux < width && uy < height)) continue;
-      out_row[i] = cells(static_cast<int>(uy), static_cast<int>(ux));
+      const Eigen::Vector2d u = u_of(i);
+      out_row[i] = cells(static_cast<int>(u.y()), static_cast<int>(u.x()));
     }
   }
 }
@@ -237,17 +244,24 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
     const cv::Rect band(0, y0, size.width, std::min(kBandRows, size.height - y0));
     for (std::size_t k = 0; k < inputs.size(); ++k) {
       const cv::Rect region = sampler.Sample(k, band, sampled);
-      if (region.area() == 0) continue;
-      cv::add(occupied_count(region), 1, occupied_count(region),
-              CompareMask(sampled(region), cv::CMP_EQ, static_cast<int>(CellState::kOccupied)));
-      cv::add(free_count(region), 1, free_count(region),
-              CompareMask(sampled(region), cv::CMP_EQ, static_cast<int>(CellState::kFree)));
+      // One pass over the region counts both states (two masked adds took five passes and two
+      // mask allocations per input and band).
+      for (int j = region.y; j < region.y + region.height; ++j) {
+        const std::uint8_t* states = sampled.ptr<std::uint8_t>(j);
+        std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j);
+        std::uint16_t* free_row = free_count.ptr<std::uint16_t>(j);
+        for (int i = region.x; i < region.x + region.width; ++i) {
+          occupied_row[i] += states[i] == static_cast<std::uint8_t>(CellState::kOccupied);
+          free_row[i] += states[i] == static_cast<std::uint8_t>(CellState::kFree);
+        }
+      }
     }
     for (int j = band.y; j < band.y + band.height; ++j) {
       const std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j);
       const std::uint16_t* free_row = free_count.ptr<std::uint16_t>(j);
+      std::uint8_t* merged_row = merged.mutable_cells().ptr<std::uint8_t>(j);
       for (int i = 0; i < size.width; ++i) {
-        merged.set({i, j}, Fuse(occupied_row[i], free_row[i], mode));
+        merged_row[i] = static_cast<std::uint8_t>(Fuse(occupied_row[i], free_row[i], mode));
       }
     }
   });

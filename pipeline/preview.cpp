@@ -43,14 +43,20 @@ struct BandColours {
     switch (merged) {
       case CellState::kUnknown:
         return kPreviewUnknown;
+      // Most cells are seen by one map: its colour is the mean, with no division to make.
       case CellState::kFree: {
-        if (free_count(r, i) == 0) return kPreviewFree;
-        const cv::Vec3d mean_bgr = cv::Vec3d(free_sum(r, i)) / free_count(r, i);
+        const int count = free_count(r, i);
+        if (count == 0) return kPreviewFree;
+        const cv::Vec3d sum_bgr(free_sum(r, i));
+        const cv::Vec3d mean_bgr = count == 1 ? sum_bgr : sum_bgr / count;
         return cv::Vec3d(kPreviewFree) * (1.0 - kFreeTintWeight) + mean_bgr * kFreeTintWeight;
       }
-      case CellState::kOccupied:
-        if (occupied_count(r, i) == 0) return kPreviewOccupiedByNone;
-        return cv::Vec3d(occupied_sum(r, i)) / occupied_count(r, i);
+      case CellState::kOccupied: {
+        const int count = occupied_count(r, i);
+        if (count == 0) return kPreviewOccupiedByNone;
+        if (count == 1) return cv::Vec3b(occupied_sum(r, i));
+        return cv::Vec3d(occupied_sum(r, i)) / count;
+      }
     }
     return kPreviewUnknown;
   }
