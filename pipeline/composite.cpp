@@ -98,12 +98,15 @@ void SampleRegion(const CompositeInput& input, const CellAffine& affine, const c
     };
     // Each coordinate is monotonic in i (so is each rounding step of its sum), so the centres
     // inside the input are one run of i: trim the widened ends to it, then the loop needs no
-    // test, and with u >= 0 the int cast equals floor.
+    // test, and with u >= 0 the int cast equals floor. The clamp only guards the reads should a
+    // compiler evaluate u differently here and in `inside` (a fused multiply-add in one only).
     while (i_begin < i_end && !inside(u_of(i_begin))) ++i_begin;
     while (i_end > i_begin && !inside(u_of(i_end - 1))) --i_end;
+    const int last_col = cells.cols - 1, last_row = cells.rows - 1;
     for (int i = i_begin; i < i_end; ++i) {
       const Eigen::Vector2d u = u_of(i);
-      out_row[i] = cells(static_cast<int>(u.y()), static_cast<int>(u.x()));
+      out_row[i] = cells(std::min(static_cast<int>(u.y()), last_row),
+                         std::min(static_cast<int>(u.x()), last_col));
     }
   }
 }
@@ -244,8 +247,8 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
     const cv::Rect band(0, y0, size.width, std::min(kBandRows, size.height - y0));
     for (std::size_t k = 0; k < inputs.size(); ++k) {
       const cv::Rect region = sampler.Sample(k, band, sampled);
-      // One pass over the region counts both states (two masked adds took five passes and two
-      // mask allocations per input and band).
+      // One pass over the region counts both states (masked cv::add calls would take five passes
+      // and two mask allocations per input and band).
       for (int j = region.y; j < region.y + region.height; ++j) {
         const std::uint8_t* states = sampled.ptr<std::uint8_t>(j);
         std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j);
