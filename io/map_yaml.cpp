@@ -53,6 +53,13 @@ double ToNumber(const YAML::Node& node, const std::string& key, const Entry& ent
 
 fs::path ReadImagePath(const std::map<std::string, Entry>& entries, const fs::path& yaml_path,
                        const YamlErrors& errors) {
+  // A job file handed over as a map (`merge --out DIR job.yaml`) would otherwise read as a map
+  // with its image key forgotten.
+  if (Find(entries, "image") == nullptr && Find(entries, "maps") != nullptr) {
+    errors.Fail(
+        "missing required key 'image' (the image file name): this file has a 'maps' key, as a "
+        "job file does; run a job file as `fleetmerge merge FILE`, without --out");
+  }
   const Entry& entry = Require(entries, "image", "the image file name", errors);
   if (!entry.value.IsScalar() || entry.value.Scalar().empty()) {
     errors.Fail("image", entry, "expected an image file name, got " + Describe(entry.value));

@@ -134,6 +134,14 @@ TEST_F(MapIoErrorsTest, MissingRequiredKeys) {
       Contains(YamlError("image: tiny.pgm\nresolution: 0.05\n"), "missing required key 'origin'"));
 }
 
+// `merge --out DIR job.yaml` reads the job file as a map: say what it is instead.
+TEST_F(MapIoErrorsTest, JobFileGivenAsAMap) {
+  const std::string error = YamlError("name: site\nmaps:\n  - a.yaml\n  - b.yaml\n");
+  EXPECT_TRUE(Contains(error, "missing required key 'image'")) << error;
+  EXPECT_TRUE(Contains(error, "as a job file does; run a job file as `fleetmerge merge FILE`"))
+      << error;
+}
+
 TEST_F(MapIoErrorsTest, ResolutionNotANumber) {
   EXPECT_TRUE(Contains(ErrorWith("abc", "[0, 0, 0]"),
                        "line 2: key 'resolution': expected a number, got 'abc'"));
