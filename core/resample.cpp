@@ -77,8 +77,9 @@ OccupancyGrid ResampleToResolution(const OccupancyGrid& grid, double resolution_
   const GridGeometry& old_geometry = grid.geometry();
   // Target cell size in source cells: > 1 coarsens, < 1 refines.
   const double ratio = resolution_m / old_geometry.resolution_m();
-  if (std::abs(ratio - 1.0) <= kIndexSlack)
+  if (HasResolution(old_geometry, resolution_m)) {
     return OccupancyGrid(old_geometry, grid.cells().clone());
+  }
 
   const Eigen::Array2i new_size(CeilCount(old_geometry.width() / ratio),
                                 CeilCount(old_geometry.height() / ratio));
@@ -89,6 +90,10 @@ OccupancyGrid ResampleToResolution(const OccupancyGrid& grid, double resolution_
     Refine(grid.cells(), ratio, out.mutable_cells());
   }
   return out;
+}
+
+bool HasResolution(const GridGeometry& geometry, double resolution_m) {
+  return std::abs(resolution_m / geometry.resolution_m() - 1.0) <= kIndexSlack;
 }
 
 }  // namespace fleetmerge

@@ -17,8 +17,12 @@
 
 namespace fleetmerge {
 
-// Returns a copy when resolution_m equals the grid's (to 1e-9 relative). Throws fleetmerge::Error
+// Returns a copy when resolution_m equals the grid's (HasResolution). Throws fleetmerge::Error
 // unless resolution_m is a finite number > 0.
 OccupancyGrid ResampleToResolution(const OccupancyGrid& grid, double resolution_m);
+
+// Whether the grid's cells are resolution_m wide, to 1e-9 relative: ResampleToResolution would
+// return its cells unchanged.
+bool HasResolution(const GridGeometry& geometry, double resolution_m);
 
 }  // namespace fleetmerge

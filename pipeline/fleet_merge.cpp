@@ -39,8 +39,13 @@ std::vector<OccupancyGrid> AtOneResolution(const std::vector<const OccupancyGrid
     }
   }
   std::vector<OccupancyGrid> out;
-  // A map already at resolution_m comes back as a copy (ResampleToResolution's contract).
-  for (const OccupancyGrid* m : maps) out.push_back(ResampleToResolution(*m, resolution_m));
+  out.reserve(maps.size());
+  // A map already at resolution_m shares its cells (OccupancyGrid copies share them; nothing in
+  // a merge writes to an input): copying them took 33 ACES maps ~25 ms of one thread.
+  for (const OccupancyGrid* m : maps) {
+    out.push_back(
+        HasResolution(m->geometry(), resolution_m) ? *m : ResampleToResolution(*m, resolution_m));
+  }
   return out;
 }
 

@@ -28,7 +28,7 @@ struct FleetTiming {
 
 struct FleetResult {
   double resolution_m = 0.0;           // the maps were compared and composited at this
-  std::vector<OccupancyGrid> maps;     // the inputs at resolution_m
+  std::vector<OccupancyGrid> maps;     // the inputs at resolution_m (sharing their cells)
   std::vector<int> component_of;       // per map
   std::vector<Pose2> T_component_map;  // per map: its map frame in its component's frame
   std::vector<PlacedBy> placed_by;     // per map: what put it there (pipeline/fleet_graph.hpp)
