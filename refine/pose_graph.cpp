@@ -125,6 +125,11 @@ std::vector<std::optional<Pose2>> OptimizePoseGraph(
   if (gauge) {
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    // A fleet's graph is small (3 parameters per map): Eigen's simplicial Cholesky solves it
+    // faster than CHOLMOD's supernodal one with its BLAS calls (docs/speed.md, the fleet graph).
+    if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
+      solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+    }
     solver.max_num_iterations = 100;
     solver.logging_type = ceres::SILENT;
     solver.num_threads = 1;
