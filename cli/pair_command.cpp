@@ -88,8 +88,9 @@ MergedFiles WriteMerged(const PairCommand& command, const LoadedMap& a, const Lo
   const OccupancyGrid b_at_a = ResampleToResolution(b.grid, resolution_m);
   const std::vector<CompositeInput> inputs = {{&a.grid, Pose2()},
                                               {&b_at_a, result.hypotheses.front().T_a_b}};
-  const OccupancyGrid merged =
-      Composite(inputs, resolution_m, FusionMode::kLogOdds, command.threads, /*reference=*/0);
+  PreviewColourer preview;  // coloured while compositing: the inputs are sampled once
+  const OccupancyGrid merged = Composite(inputs, resolution_m, FusionMode::kLogOdds,
+                                         command.threads, /*reference=*/0, &preview);
   std::vector<std::filesystem::path> protect;  // the inputs (a bag's map has no image path)
   for (const auto& p :
        {a.metadata.yaml_path, a.metadata.image_path, b.metadata.yaml_path, b.metadata.image_path}) {
@@ -97,7 +98,7 @@ MergedFiles WriteMerged(const PairCommand& command, const LoadedMap& a, const Lo
   }
   MergedFiles files{dir / "merged.yaml", dir / "merged_preview.png", dir / kHtmlReportName};
   SaveMap(merged, files.yaml, protect);
-  SaveImage(ColourPreview(inputs, merged, command.threads), files.preview, protect);
+  SaveImage(preview.image(), files.preview, protect);
   WriteHtmlReport(PairPage(command, a, b, result, merged), dir, protect,  // the page last
                   command.threads);
   return files;

@@ -42,6 +42,9 @@ struct FleetOptions {
   // are evicted beyond).
   std::filesystem::path cache_dir;
   std::int64_t cache_max_mb = kDefaultCacheMaxMb;
+  // Colour each merged map's preview while compositing (FleetComponent::preview): a job that
+  // writes its results asks for them.
+  bool previews = false;
 };
 
 }  // namespace fleetmerge

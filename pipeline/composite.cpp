@@ -230,9 +230,11 @@ OccupancyGrid SampleOnto(const CompositeInput& input, const GridGeometry& target
 }
 
 OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolution_m,
-                        FusionMode mode, int threads, int reference_input) {
+                        FusionMode mode, int threads, int reference_input,
+                        CompositeObserver* observer) {
   ValidateInputs(inputs, resolution_m, reference_input);
   const GridGeometry geometry = MergedGeometry(inputs, resolution_m, reference_input);
+  if (observer != nullptr) observer->Begin(geometry);
   const cv::Size size(geometry.width(), geometry.height());
   const InputSampler sampler(inputs, geometry);
   OccupancyGrid merged(geometry);
@@ -245,8 +247,11 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
   ParallelFor(static_cast<std::size_t>(bands), threads, [&](std::size_t band_index) {
     const int y0 = static_cast<int>(band_index) * kBandRows;
     const cv::Rect band(0, y0, size.width, std::min(kBandRows, size.height - y0));
+    const std::unique_ptr<CompositeObserver::Band> seen =
+        observer != nullptr ? observer->StartBand(band) : nullptr;
     for (std::size_t k = 0; k < inputs.size(); ++k) {
       const cv::Rect region = sampler.Sample(k, band, sampled);
+      if (seen && region.area() > 0) seen->Add(k, sampled, region);
       // One pass over the region counts both states (masked cv::add calls would take five passes
       // and two mask allocations per input and band).
       for (int j = region.y; j < region.y + region.height; ++j) {
@@ -267,6 +272,7 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
         merged_row[i] = static_cast<std::uint8_t>(Fuse(occupied_row[i], free_row[i], mode));
       }
     }
+    if (seen) seen->Finish(merged);
   });
   return merged;
 }

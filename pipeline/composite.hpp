@@ -28,6 +28,7 @@
 //   kVote     majority of the known states; a tie is kOccupied (conservative).
 #pragma once
 
+#include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
 
@@ -47,14 +48,34 @@ struct CompositeInput {
   Pose2 T_merged_map;                   // pose of this map's own map frame in the merged frame
 };
 
+// Sees what Composite samples, for work that needs each input's states at the merged cells as
+// well as the fused cells (the preview's colours, pipeline/preview.hpp): the inputs are then
+// sampled once for both.
+class CompositeObserver {
+ public:
+  // One band of merged rows. Bands run on Composite's threads, each band on one thread.
+  class Band {
+   public:
+    virtual ~Band() = default;
+    // Input k's states over `region`, a part of the band, in `sampled` (merged-sized).
+    virtual void Add(std::size_t k, const cv::Mat1b& sampled, const cv::Rect& region) = 0;
+    // After every input: the band's rows of `merged` are fused.
+    virtual void Finish(const OccupancyGrid& merged) = 0;
+  };
+  virtual ~CompositeObserver() = default;
+  // Before any band: the merged grid's geometry.
+  virtual void Begin(const GridGeometry& merged) = 0;
+  virtual std::unique_ptr<Band> StartBand(const cv::Rect& band) = 0;
+};
+
 // The merged grid at resolution_m. With no known cell in any input it is an empty (0 x 0) grid.
 // `reference_input` indexes `inputs` (-1: none): the merged cells are on its cell lattice.
 // Throws fleetmerge::Error unless resolution_m is a finite number > 0, every grid is set and
 // reference_input is -1 or an index. Bands of merged rows are fused on `threads` threads (<= 0:
-// all cores): the same grid for any count.
+// all cores): the same grid for any count. `observer`, when set, sees every band's samples.
 OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolution_m,
                         FusionMode mode = FusionMode::kLogOdds, int threads = 1,
-                        int reference_input = -1);
+                        int reference_input = -1, CompositeObserver* observer = nullptr);
 
 // One input's state at the centre of every cell of `target` (whose map frame is the merged
 // frame): the lookup Composite fuses, also used to colour previews. kUnknown where the centre

@@ -15,6 +15,7 @@
 #include "pipeline/fleet_graph.hpp"
 #include "pipeline/pair_cache.hpp"
 #include "pipeline/pose_priors.hpp"
+#include "pipeline/preview.hpp"
 #include "pipeline/weak_bridges.hpp"
 
 namespace fleetmerge {
@@ -123,9 +124,8 @@ void RejectUnconfirmedAmbiguous(PairOutcome& pair) {
 // where only that map knows a cell the merged map holds that very cell. Inputs finer than the
 // merged cells are coarsened from the original maps first (ResampleToResolution keeps one-cell
 // walls that a nearest-cell lookup would drop).
-OccupancyGrid CompositeComponent(const std::vector<const OccupancyGrid*>& maps,
-                                 const FleetResult& result, const FleetComponent& component,
-                                 const FleetOptions& options) {
+void CompositeComponent(const std::vector<const OccupancyGrid*>& maps, const FleetResult& result,
+                        FleetComponent& component, const FleetOptions& options) {
   const double resolution_m = options.resolution_m > 0.0
                                   ? options.resolution_m
                                   : maps[component.reference]->geometry().resolution_m();
@@ -143,7 +143,11 @@ OccupancyGrid CompositeComponent(const std::vector<const OccupancyGrid*>& maps,
     }
     inputs.push_back({grid, result.T_component_map[m]});
   }
-  return Composite(inputs, resolution_m, options.fusion, options.threads, reference_input);
+  std::optional<PreviewColourer> preview;
+  if (options.previews && compared_cells) preview.emplace();
+  component.merged = Composite(inputs, resolution_m, options.fusion, options.threads,
+                               reference_input, preview ? &*preview : nullptr);
+  if (preview) component.preview = preview->image();
 }
 
 }  // namespace
@@ -266,7 +270,7 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
       // compositing would crop it to its known cells).
       component.merged = result.maps.front();
     } else if (component.maps.size() >= 2) {
-      component.merged = CompositeComponent(maps, result, component, options);
+      CompositeComponent(maps, result, component, options);
     }
     if (progress) progress("composite", static_cast<int>(c) + 1, int(result.components.size()));
   }

@@ -5,6 +5,7 @@
 // A map that overlaps no other stays unmerged: never forced in, never dropped.
 #pragma once
 
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,6 +21,10 @@ struct FleetComponent {
   std::vector<int> maps;                // map indices, in job order
   int reference = 0;                    // the map whose frame is the component's merged frame
   std::optional<OccupancyGrid> merged;  // components of two or more maps (or a one-map job)
+  // ColourPreview of `merged` from the inputs at the compared resolution, made while compositing
+  // when FleetOptions::previews asks (empty otherwise, or when the merged cells are not the
+  // compared ones: the preview then samples other inputs than compositing did).
+  cv::Mat3b preview;
 };
 
 struct FleetTiming {

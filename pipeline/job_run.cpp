@@ -44,10 +44,13 @@ std::vector<std::string> WriteOutputs(const std::filesystem::path& dir, const Fl
     if (!component.merged) continue;
     const std::string stem = "merged_" + std::to_string(c);
     SaveMap(*component.merged, dir / files[c], protect);
-    std::vector<CompositeInput> inputs;
-    for (int m : component.maps) inputs.push_back({&result.maps[m], result.T_component_map[m]});
-    SaveImage(ColourPreview(inputs, *component.merged, threads), dir / (stem + "_preview.png"),
-              protect);
+    cv::Mat3b preview = component.preview;  // made while compositing, where it could be
+    if (preview.empty()) {
+      std::vector<CompositeInput> inputs;
+      for (int m : component.maps) inputs.push_back({&result.maps[m], result.T_component_map[m]});
+      preview = ColourPreview(inputs, *component.merged, threads);
+    }
+    SaveImage(preview, dir / (stem + "_preview.png"), protect);
     written.insert(written.end(), {files[c], stem + ".pgm", stem + "_preview.png"});
   }
   return files;
@@ -211,7 +214,9 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
       cache_options.job = JobIdentity(job);
       cache.emplace(job.options.cache_dir, FLEETMERGE_VERSION_STRING, cache_options);
     }
-    outcome.result = MergeFleet(grids, reference, fixed, priors, job.options, options.progress,
+    FleetOptions fleet_options = job.options;
+    fleet_options.previews = options.write;  // coloured while compositing: one sampling pass
+    outcome.result = MergeFleet(grids, reference, fixed, priors, fleet_options, options.progress,
                                 cache ? &*cache : nullptr);
     if (cache) outcome.cache = cache->stats();  // MergeFleet closed it after the pairs
   }

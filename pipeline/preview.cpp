@@ -66,7 +66,38 @@ struct BandColours {
   cv::Mat1i free_count, occupied_count;
 };
 
+// The band's rows of the preview image (row 0 at the top).
+void ColourRows(const BandColours& colours, const OccupancyGrid& merged, cv::Mat3b& image) {
+  const int height = merged.height(), width = merged.width();
+  for (int j = colours.band.y; j < colours.band.y + colours.band.height; ++j) {
+    // Grid rows count up from the bottom, image rows down from the top: flip.
+    cv::Vec3b* image_row = image.ptr<cv::Vec3b>(height - 1 - j);
+    for (int i = 0; i < width; ++i) image_row[i] = colours.Pixel(j, i, merged.at({i, j}));
+  }
+}
+
+class PreviewBand : public CompositeObserver::Band {
+ public:
+  PreviewBand(const cv::Rect& band, cv::Mat3b& image) : colours_(band), image_(image) {}
+  void Add(std::size_t k, const cv::Mat1b& sampled, const cv::Rect& region) override {
+    colours_.Add(sampled, region, cv::Vec3i(PaletteColour(static_cast<int>(k))));
+  }
+  void Finish(const OccupancyGrid& merged) override { ColourRows(colours_, merged, image_); }
+
+ private:
+  BandColours colours_;
+  cv::Mat3b& image_;  // each band writes its own rows
+};
+
 }  // namespace
+
+void PreviewColourer::Begin(const GridGeometry& merged) {
+  image_.create(merged.height(), merged.width());
+}
+
+std::unique_ptr<CompositeObserver::Band> PreviewColourer::StartBand(const cv::Rect& band) {
+  return std::make_unique<PreviewBand>(band, image_);
+}
 
 cv::Vec3b PaletteColour(int input_index) {
   // RGB values written as usually listed, stored here BGR.
@@ -98,11 +129,7 @@ cv::Mat3b ColourPreview(const std::vector<CompositeInput>& inputs, const Occupan
         colours.Add(sampled, region, cv::Vec3i(PaletteColour(static_cast<int>(k))));
       }
     }
-    for (int j = colours.band.y; j < colours.band.y + colours.band.height; ++j) {
-      // Grid rows count up from the bottom, image rows down from the top: flip.
-      cv::Vec3b* image_row = image.ptr<cv::Vec3b>(height - 1 - j);
-      for (int i = 0; i < width; ++i) image_row[i] = colours.Pixel(j, i, merged.at({i, j}));
-    }
+    ColourRows(colours, merged, image);
   });
   return image;
 }

@@ -29,4 +29,17 @@ inline const cv::Vec3b kPreviewOccupiedByNone(0, 0, 0);  // occupied in `merged`
 cv::Mat3b ColourPreview(const std::vector<CompositeInput>& inputs, const OccupancyGrid& merged,
                         int threads = 1);
 
+// ColourPreview made while Composite fuses (pass it as Composite's observer): image() is then
+// ColourPreview(inputs, merged) pixel for pixel, without sampling the inputs a second time
+// (sampling is most of either's time).
+class PreviewColourer : public CompositeObserver {
+ public:
+  void Begin(const GridGeometry& merged) override;
+  std::unique_ptr<Band> StartBand(const cv::Rect& band) override;
+  const cv::Mat3b& image() const { return image_; }
+
+ private:
+  cv::Mat3b image_;
+};
+
 }  // namespace fleetmerge

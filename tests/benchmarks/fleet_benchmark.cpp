@@ -90,20 +90,29 @@ BENCHMARK(BM_MapDigest)->Unit(benchmark::kMicrosecond);
 
 // Compositing and the colour preview of the eight maps on one thread, each turned by a yaw of
 // its own (0.7 rad apart; the first at identity, as a reference map is): the sampling of every
-// input at every merged cell that `merge`'s composite and write stages do.
+// input at every merged cell that `merge`'s composite stage does. /1: the preview coloured while
+// compositing (PreviewColourer, as `merge` and `pair` do); /0: ColourPreview afterwards, which
+// samples the inputs again (a job whose merged cells are not the compared ones).
 void BM_CompositeAndPreview(benchmark::State& state) {
   const std::vector<OccupancyGrid>& maps = EightMaps();
   std::vector<CompositeInput> inputs;
   for (std::size_t k = 0; k < maps.size(); ++k) {
     inputs.push_back({&maps[k], Pose2(3.0 * k, -2.0 * k, 0.7 * k)});
   }
+  const double resolution_m = maps.front().geometry().resolution_m();
   for (auto _ : state) {
-    const OccupancyGrid merged =
-        Composite(inputs, maps.front().geometry().resolution_m(), FusionMode::kLogOdds, 1, 0);
-    benchmark::DoNotOptimize(ColourPreview(inputs, merged, 1));
+    if (state.range(0) == 1) {
+      PreviewColourer preview;
+      benchmark::DoNotOptimize(
+          Composite(inputs, resolution_m, FusionMode::kLogOdds, 1, 0, &preview));
+      benchmark::DoNotOptimize(preview.image());
+    } else {
+      const OccupancyGrid merged = Composite(inputs, resolution_m, FusionMode::kLogOdds, 1, 0);
+      benchmark::DoNotOptimize(ColourPreview(inputs, merged, 1));
+    }
   }
 }
-BENCHMARK(BM_CompositeAndPreview)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CompositeAndPreview)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace fleetmerge

@@ -290,6 +290,33 @@ TEST(Composite, MergedGridAndPreviewAreTheSameForAnyThreadCount) {
   }
 }
 
+// The preview coloured while compositing is ColourPreview's afterwards, pixel for pixel: rotated
+// maps, a reference map, several bands, any thread count.
+TEST(ColourPreview, ColouredWhileCompositingIsTheSameImage) {
+  const PlacedOffices offices(5, 20.0, 15.0, 5.0, 7);
+  const std::vector<CompositeInput>& inputs = offices.inputs;
+  for (const int reference : {-1, 2}) {
+    const OccupancyGrid merged = Composite(inputs, 0.05, FusionMode::kLogOdds, 1, reference);
+    ASSERT_GT(merged.height(), 64 * 3);  // several bands of rows
+    const cv::Mat3b after = ColourPreview(inputs, merged, 1);
+    for (const int threads : {1, 2, 3}) {
+      PreviewColourer preview;
+      const OccupancyGrid with_preview =
+          Composite(inputs, 0.05, FusionMode::kLogOdds, threads, reference, &preview);
+      EXPECT_EQ(cv::countNonZero(with_preview.cells() != merged.cells()), 0);
+      ASSERT_EQ(preview.image().size(), after.size());
+      cv::Mat difference;
+      cv::absdiff(preview.image(), after, difference);
+      EXPECT_EQ(cv::countNonZero(difference.reshape(1)), 0)
+          << "reference " << reference << ", " << threads << " threads";
+    }
+  }
+  PreviewColourer none;  // no known cell: an empty merged grid, an empty image
+  const OccupancyGrid unknown(GridGeometry(0.05, {40, 30}));
+  EXPECT_EQ(Composite({{&unknown, Pose2()}}, 0.05, FusionMode::kLogOdds, 1, -1, &none).width(), 0);
+  EXPECT_TRUE(none.image().empty());
+}
+
 TEST(ColourPreview, ColoursEachMapAndPutsTheHighestRowOnTop) {
   // a: 4 x 3 free cells at the origin with its top-left cell occupied; b: the same size 1 m to the
   // right with its bottom-right cell occupied. Merged: 16 x 5 cells with the margin.

@@ -13,6 +13,7 @@
 #include "core/resample.hpp"
 #include "io/map_io.hpp"
 #include "pipeline/composite.hpp"
+#include "pipeline/preview.hpp"
 #include "sim/ground_truth_pair.hpp"
 #include "tests/support/shared_data.hpp"
 
@@ -207,6 +208,36 @@ TEST(FleetMerge, ResultDoesNotDependOnThreadCount) {
     EXPECT_EQ(r1.T_component_map[m].x_m(), r2.T_component_map[m].x_m());
     EXPECT_EQ(r1.T_component_map[m].yaw_rad(), r2.T_component_map[m].yaw_rad());
   }
+}
+
+// A job that writes asks for previews: made while compositing, they are ColourPreview's images;
+// where the merged cells are not the compared ones the preview is left to the writer.
+TEST(FleetMerge, PreviewsMadeWhileCompositingAreColourPreviews) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  std::mt19937 rng(8);
+  const GroundTruthFleet fleet = CutFleet(LoadShared("intel_lab.yaml"), 4, rng);
+  FleetOptions options;
+  EXPECT_TRUE(MergeFleet(Pointers(fleet.maps), 0, options).components.front().preview.empty());
+  options.previews = true;
+  const FleetResult result = MergeFleet(Pointers(fleet.maps), 0, options);
+  ASSERT_EQ(result.components.size(), 1u);
+  const FleetComponent& component = result.components.front();
+  ASSERT_TRUE(component.merged);
+  std::vector<CompositeInput> inputs;
+  for (const int m : component.maps) {
+    inputs.push_back({&result.maps[m], result.T_component_map[m]});
+  }
+  const cv::Mat3b expected = ColourPreview(inputs, *component.merged);
+  ASSERT_EQ(component.preview.size(), expected.size());
+  cv::Mat difference;
+  cv::absdiff(component.preview, expected, difference);
+  EXPECT_EQ(cv::countNonZero(difference.reshape(1)), 0);
+  // A coarser reference: compared at the finest cells, merged on the reference's.
+  std::vector<OccupancyGrid> maps = fleet.maps;
+  maps[1] = ResampleToResolution(maps[1], 2.0 * maps[1].geometry().resolution_m());
+  const FleetResult coarse = MergeFleet(Pointers(maps), 1, options);
+  ASSERT_TRUE(coarse.components.front().merged);
+  EXPECT_TRUE(coarse.components.front().preview.empty());
 }
 
 }  // namespace
