@@ -31,7 +31,7 @@ cv::Mat3b ColourPreview(const std::vector<CompositeInput>& inputs, const Occupan
 
 // ColourPreview made while Composite fuses (pass it as Composite's observer): image() is then
 // ColourPreview(inputs, merged) pixel for pixel, without sampling the inputs a second time
-// (sampling is most of either's time).
+// (BM_CompositeAndPreview: docs/speed.md).
 class PreviewColourer : public CompositeObserver {
  public:
   void Begin(const GridGeometry& merged) override;
