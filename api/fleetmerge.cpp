@@ -208,6 +208,18 @@ void Map::set_fixed(bool fixed, Pose2D pose) {
     throw std::invalid_argument("map '" + name_ + "': a fixed map's pose must be finite [x, y, " +
                                 "yaw] (m, m, rad)");
   }
+  if (std::abs(pose.yaw) > kMaxYawRad) {
+    throw std::invalid_argument("map '" + name_ + "': a fixed map's pose yaw " +
+                                YawLooksLikeDegrees(pose.yaw) +
+                                "; expected radians, at most 2 pi in magnitude");
+  }
+  if (!fixed && (pose.x != 0.0 || pose.y != 0.0 || pose.yaw != 0.0)) {
+    // As a job file refuses `pose` without `fixed: true`: it would be ignored.
+    throw std::invalid_argument("map '" + name_ +
+                                "': a pose is the pose of a fixed map; set it with "
+                                "set_fixed(true, pose) (a robot's known start pose is "
+                                "set_initial_pose)");
+  }
   fixed_ = fixed;
   pose_ = pose;
 }
@@ -222,6 +234,15 @@ void Map::set_initial_pose(Pose2D pose, double sigma_m, double sigma_rad) {
     throw std::invalid_argument("map '" + name_ + "': an initial pose's sigmas [" +
                                 std::to_string(sigma_m) + " m, " + std::to_string(sigma_rad) +
                                 " rad] must be finite and > 0");
+  }
+  if (std::abs(pose.yaw) > kMaxYawRad) {
+    throw std::invalid_argument("map '" + name_ + "': an initial pose's yaw " +
+                                YawLooksLikeDegrees(pose.yaw) +
+                                "; expected radians, at most 2 pi in magnitude");
+  }
+  if (sigma_rad > kMaxYawSigmaRad) {
+    throw std::invalid_argument("map '" + name_ + "': an initial pose's yaw sigma " +
+                                YawLooksLikeDegrees(sigma_rad) + "; expected radians, at most pi");
   }
   initial_pose_ = pose;
   initial_pose_sigma_m_ = sigma_m;

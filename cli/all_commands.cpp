@@ -97,8 +97,9 @@ int RunAllCommands(int argc, char** argv) {
                        "; least recently used entries are evicted beyond)")
       ->check(CLI::Range(std::int64_t(1), kLargestCacheMaxMb));
   merge_app
-      ->add_option("--max-map-cells", merge.options.max_map_cells,
-                   "refuse map images with more cells (checked before decoding)")
+      ->add_option(
+          "--max-map-cells", merge.options.max_map_cells,
+          "refuse map images (before decoding) and merged maps (before allocating) with more cells")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   AddMethodOptions(*merge_app, merge.options.pair);

@@ -64,6 +64,38 @@ ProgressFn MakeProgress(const std::string& job, bool quiet, std::ostream& err) {
   };
 }
 
+// One line per group of maps that priors placed (PlacedBy::kPrior): a map alone, or maps that
+// accepted pairs link to each other only, with the maps whose initial_pose placed them.
+void PrintPlacedByPriors(const Job& job, const FleetResult& result, std::ostream& out) {
+  const int map_count = static_cast<int>(job.maps.size());
+  const std::vector<int> group_of = Components(map_count, result.pairs);
+  std::vector<bool> printed(map_count, false);
+  for (int m = 0; m < map_count; ++m) {
+    if (result.placed_by[m] != PlacedBy::kPrior || printed[group_of[m]]) continue;
+    printed[group_of[m]] = true;
+    std::vector<std::string> members, with_prior;
+    for (int k = 0; k < map_count; ++k) {
+      if (group_of[k] != group_of[m]) continue;
+      members.push_back(job.maps[k].name);
+      if (job.maps[k].prior) with_prior.push_back(job.maps[k].name);
+    }
+    const auto list = [](const std::vector<std::string>& names) {
+      std::string text;
+      for (std::size_t k = 0; k < names.size(); ++k) {
+        text += (k == 0 ? "" : k + 1 == names.size() ? " and " : ", ") + names[k];
+      }
+      return text;
+    };
+    out << job.name << ": " << list(members);
+    if (members.size() == 1) {
+      out << " placed by its initial_pose (no accepted pair links it to another map)\n";
+    } else {
+      out << " placed by the initial_pose" << (with_prior.size() == 1 ? " of " : "s of ")
+          << list(with_prior) << " (accepted pairs link them to each other only)\n";
+    }
+  }
+}
+
 // Runs one job (pipeline/job_run.hpp) and prints its one-line summary.
 void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, std::ostream& out,
                     std::ostream& err) {
@@ -99,11 +131,7 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
     out << job.name << ": pair " << job.maps[p.a].name << " + " << job.maps[p.b].name << " "
         << p.note << "\n";
   }
-  for (std::size_t m = 0; m < job.maps.size(); ++m) {
-    if (result.placed_by[m] != PlacedBy::kPrior) continue;
-    out << job.name << ": " << job.maps[m].name
-        << " placed by its initial_pose (no accepted pair links it to the rest)\n";
-  }
+  PrintPlacedByPriors(job, result, out);
   if (outcome.cache) {
     const PairCacheStats& cache = *outcome.cache;
     out << job.name << ": pairs: " << cache.pairs_cached << " from the cache, "
@@ -163,6 +191,12 @@ MapPoseOption ParseMapPoseOption(const std::string& flag, const std::string& val
   }
   if (option.numbers.size() != 3 && (fixed || option.numbers.size() != 5)) {
     throw fail(std::to_string(option.numbers.size()) + " numbers");
+  }
+  if (std::abs(option.numbers[2]) > kMaxYawRad) {
+    throw fail("YAW " + YawLooksLikeDegrees(option.numbers[2]) + "; at most 2 pi in magnitude");
+  }
+  if (option.numbers.size() == 5 && option.numbers[4] > kMaxYawSigmaRad) {
+    throw fail("SIGMA_RAD " + YawLooksLikeDegrees(option.numbers[4]) + "; at most pi");
   }
   return option;
 }

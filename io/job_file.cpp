@@ -193,6 +193,12 @@ std::vector<double> ReadNumbers(const YamlField& field, std::size_t count, const
 // map_server's `origin` is written.
 Pose2 ReadPose(const YamlField& field, const char* key, const YamlErrors& errors) {
   const std::vector<double> xyz = ReadNumbers(field, 3, key, kPoseExpected, false, errors);
+  if (std::abs(xyz[2]) > kMaxYawRad) {
+    FailExpected(
+        ListElement(field, 2),
+        std::string("a yaw in radians, at most 2 pi in magnitude: ") + YawLooksLikeDegrees(xyz[2]),
+        errors);
+  }
   return Pose2(xyz[0], xyz[1], xyz[2]);
 }
 
@@ -235,10 +241,18 @@ MapEntry ReadMapEntry(const YamlField& entry, const fs::path& folder, const Yaml
     if (auto f = map.Find("initial_pose_sigma")) {
       const std::vector<double> sigma =
           ReadNumbers(*f, 2, "initial_pose_sigma", kSigmaExpected, true, errors);
+      if (sigma[1] > kMaxYawSigmaRad) {
+        FailExpected(
+            ListElement(*f, 1),
+            std::string("a yaw sigma in radians, at most pi: ") + YawLooksLikeDegrees(sigma[1]),
+            errors);
+      }
       if (!listed.prior) {
         errors.Fail(f->key, f->line,
-                    "'initial_pose_sigma' is the uncertainty of an 'initial_pose'; add "
-                    "'initial_pose: [x, y, yaw]' or remove 'initial_pose_sigma'");
+                    listed.fixed ? "a fixed map's pose is exact: remove 'initial_pose_sigma'"
+                                 : "'initial_pose_sigma' is the uncertainty of an "
+                                   "'initial_pose'; add 'initial_pose: [x, y, yaw]' or remove "
+                                   "'initial_pose_sigma'");
       }
       listed.prior->translation_sigma_m = sigma[0];
       listed.prior->yaw_sigma_rad = sigma[1];

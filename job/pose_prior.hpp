@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <optional>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "core/pose2.hpp"
@@ -16,6 +18,18 @@ namespace fleetmerge {
 // places maps that overlap nobody.
 constexpr double kDefaultPriorTranslationSigmaM = 0.5;
 constexpr double kDefaultPriorYawSigmaRad = 10.0 * M_PI / 180.0;
+
+// Yaws are radians. A yaw beyond 2 pi in magnitude, or a yaw sigma beyond pi (a heading known
+// to worse than a half turn is not known), is almost surely degrees (90 for a quarter turn,
+// 10 for ten degrees) and is refused rather than silently wrapped.
+constexpr double kMaxYawRad = 2.0 * M_PI;
+constexpr double kMaxYawSigmaRad = M_PI;
+// What a refusal says: "<yaw> rad looks like degrees (<yaw> deg is <radians> rad)".
+inline std::string YawLooksLikeDegrees(double yaw) {
+  std::ostringstream text;
+  text << yaw << " rad looks like degrees (" << yaw << " deg is " << yaw * M_PI / 180.0 << " rad)";
+  return text.str();
+}
 
 struct PosePrior {
   Pose2 T_site_map;  // the map frame's pose in the site (merged) frame

@@ -25,8 +25,18 @@ struct PairOutcome {
   bool ambiguous = false;                  // PairResult's: the runner-up is as good
   bool accepted = false;                   // an edge of the final pose graph
   int edge_hypothesis = -1;                // the hypothesis the edge uses (0 = the best)
-  bool refused_by_priors = false;          // every hypothesis contradicts the known start poses
-  std::string note;                        // why it was rejected or replaced
+  // Refused by the known start poses: its best passes the thresholds, but every hypothesis
+  // contradicts the priors (pipeline/pose_priors.hpp; the hypotheses stay).
+  bool refused_by_priors = false;
+  // The hypotheses the priors dropped, with their rank in the search (1-based, as the note
+  // names them) and how many sigmas they are from the priors; they stay in the report.
+  struct Dropped {
+    int search_rank = 0;
+    double sigmas = 0.0;
+    PairHypothesis hypothesis;
+  };
+  std::vector<Dropped> dropped_by_priors;
+  std::string note;  // why it was rejected or replaced
   double best_omega() const { return hypotheses.empty() ? 0.0 : hypotheses.front().omega; }
 };
 

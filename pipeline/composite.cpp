@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -146,7 +147,7 @@ Pose2 LatticeFrame(const std::vector<CompositeInput>& inputs, int reference_inpu
 // keeps its cell boundaries only if it has the lowest corner); with one it is, so the reference
 // always keeps them.
 GridGeometry MergedGeometry(const std::vector<CompositeInput>& inputs, double resolution_m,
-                            int reference_input) {
+                            int reference_input, std::int64_t max_cells) {
   const Pose2 T_merged_lattice = LatticeFrame(inputs, reference_input);
   const Pose2 T_lattice_merged = T_merged_lattice.inverse();
   Eigen::Array2d lo = Eigen::Array2d::Constant(std::numeric_limits<double>::infinity());
@@ -168,6 +169,20 @@ GridGeometry MergedGeometry(const std::vector<CompositeInput>& inputs, double re
     }
   }
   if (!(lo <= hi).all()) return GridGeometry(resolution_m, {0, 0}, T_merged_lattice);
+  // Poses far apart (a fixed pose or initial_pose kilometres off) would ask for a grid of
+  // billions of cells, or overflow int: refused before any allocation, in double.
+  const Eigen::Array2d extent_cells = (hi - lo) / resolution_m + 3.0;
+  if (!(extent_cells.x() * extent_cells.y() <= static_cast<double>(max_cells)) ||
+      !(extent_cells.maxCoeff() < std::numeric_limits<int>::max())) {
+    std::ostringstream what;
+    what << std::fixed << std::setprecision(0) << "the merged map would be " << extent_cells.x()
+         << " x " << extent_cells.y() << " cells (" << (hi - lo).x() << " x " << (hi - lo).y()
+         << " m at " << std::setprecision(3) << resolution_m << " m), more than the limit of "
+         << max_cells
+         << " cells: its maps' poses are that far apart (check fixed poses and initial_poses, "
+            "or raise max_map_cells)";
+    throw Error(what.str());
+  }
   if (reference_input < 0) {
     const Eigen::Array2d origin_m = lo - resolution_m;
     const Eigen::Array2d cells = (hi - lo) / resolution_m + 2.0;  // + margin on both sides
@@ -231,9 +246,9 @@ OccupancyGrid SampleOnto(const CompositeInput& input, const GridGeometry& target
 
 OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolution_m,
                         FusionMode mode, int threads, int reference_input,
-                        CompositeObserver* observer) {
+                        CompositeObserver* observer, std::int64_t max_cells) {
   ValidateInputs(inputs, resolution_m, reference_input);
-  const GridGeometry geometry = MergedGeometry(inputs, resolution_m, reference_input);
+  const GridGeometry geometry = MergedGeometry(inputs, resolution_m, reference_input, max_cells);
   if (observer != nullptr) observer->Begin(geometry);
   const cv::Size size(geometry.width(), geometry.height());
   const InputSampler sampler(inputs, geometry);

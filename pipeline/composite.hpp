@@ -28,6 +28,7 @@
 //   kVote     majority of the known states; a tie is kOccupied (conservative).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <opencv2/core.hpp>
 #include <vector>
@@ -73,9 +74,11 @@ class CompositeObserver {
 // Throws fleetmerge::Error unless resolution_m is a finite number > 0, every grid is set and
 // reference_input is -1 or an index. Bands of merged rows are fused on `threads` threads (<= 0:
 // all cores): the same grid for any count. `observer`, when set, sees every band's samples.
+// Throws fleetmerge::Error, before allocating, when the merged grid would exceed max_cells.
 OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolution_m,
                         FusionMode mode = FusionMode::kLogOdds, int threads = 1,
-                        int reference_input = -1, CompositeObserver* observer = nullptr);
+                        int reference_input = -1, CompositeObserver* observer = nullptr,
+                        std::int64_t max_cells = kDefaultMaxMapCells);
 
 // One input's state at the centre of every cell of `target` (whose map frame is the merged
 // frame): the lookup Composite fuses, also used to colour previews. kUnknown where the centre

@@ -377,23 +377,42 @@ FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int r
       if (graph.component_of[m] == c && poses[m]) graph.T_component_map[m] = *poses[m];
     }
   }
-  // Which maps the pairs alone (with the fixed maps' ties) link to their component's reference.
-  const std::vector<int> by_pairs =
+  // Which maps the pairs alone (with the fixed maps' ties) link together: the groups.
+  const std::vector<int> group_of =
       TiedComponents(map_count, pairs, [&](int m) { return IsFixed(fixed, m); });
+  std::vector<int> group_size(map_count, 0);
+  for (const int g : group_of) ++group_size[g];
+  // Per component, the group that pairs place in its frame (the anchor): the reference's. In the
+  // site component that is the fixed maps' group; without fixed maps the site frame is the
+  // priors' and no map's, so the anchor is the largest group (the reference's on a tie, else the
+  // first): a reference map that no pair links to another is placed by its prior like any other.
+  std::vector<int> anchor_of(components, -1);
+  for (int c = 0; c < components; ++c) {
+    anchor_of[c] = group_of[graph.component_reference[c]];
+  }
+  const bool any_fixed =
+      std::any_of(fixed.begin(), fixed.end(), [](const auto& pose) { return pose.has_value(); });
+  if (site >= 0 && !any_fixed) {
+    for (int m = 0; m < map_count; ++m) {
+      if (graph.component_of[m] == site && group_size[group_of[m]] > group_size[anchor_of[site]]) {
+        anchor_of[site] = group_of[m];
+      }
+    }
+  }
   std::vector<int> component_size(components, 0);
   for (const int c : graph.component_of) ++component_size[c];
   graph.placed_by.assign(map_count, PlacedBy::kPairs);
   for (int m = 0; m < map_count; ++m) {
-    const int ref = graph.component_reference[graph.component_of[m]];
+    const int c = graph.component_of[m];
     PlacedBy& placed = graph.placed_by[m];
     if (IsFixed(fixed, m)) {
       placed = PlacedBy::kFixed;
-    } else if (component_size[graph.component_of[m]] == 1) {
+    } else if (component_size[c] == 1) {
       placed = PlacedBy::kUnmerged;
-    } else if (m == ref) {
+    } else if (group_of[m] != anchor_of[c]) {
+      placed = PlacedBy::kPrior;  // its group's priors place it in the site frame
+    } else if (m == graph.component_reference[c]) {
       placed = PlacedBy::kReference;
-    } else if (by_pairs[m] != by_pairs[ref]) {
-      placed = PlacedBy::kPrior;
     }
   }
   return graph;

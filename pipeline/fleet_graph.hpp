@@ -50,8 +50,10 @@ inline bool IsFixed(const FixedPoses& fixed, int m) { return !fixed.empty() && f
 // S is held at the identity all the same, so the component that holds the priors has the site
 // frame (a map's pose there is comparable with its prior). S links every map with a prior, so
 // those maps form one component (with the fixed maps) even where no pair links them: a map that
-// overlaps no other is placed at its prior (PlacedBy::kPrior). Prior edges are never taken out
-// by the cycle checks: the pairs that contradict the priors were dropped before
+// overlaps no other is placed at its prior (PlacedBy::kPrior), and so is a group of maps that
+// accepted pairs link to each other but not to the fixed maps (without fixed maps: a group other
+// than the largest, the reference's on a tie), by its members' priors. Prior edges are never taken
+// out by the cycle checks: the pairs that contradict the priors were dropped before
 // (pipeline/pose_priors.hpp). Without priors and fixed maps nothing of this applies.
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
                            const PoseGraphOptions& options, const FixedPoses& fixed = {},

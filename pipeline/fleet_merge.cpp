@@ -52,22 +52,28 @@ std::vector<OccupancyGrid> AtOneResolution(const std::vector<const OccupancyGrid
 
 void AcceptByThreshold(std::vector<PairOutcome>& pairs, const FleetOptions& options) {
   for (PairOutcome& p : pairs) {
-    if (p.refused_by_priors) {  // its note says which priors it contradicts
-      p.accepted = false;
-      p.edge_hypothesis = -1;
-      continue;
-    }
+    // A pair the priors refused keeps its hypotheses: its best is judged all the same.
     p.accepted = p.best_omega() >= options.omega_threshold &&
                  p.overlap_cells >= options.min_overlap_cells &&
                  p.wall_agreement >= options.min_wall_agreement;
-    p.edge_hypothesis = p.accepted ? 0 : -1;
-    if (!p.accepted) {
-      p.note = p.hypotheses.empty() ? "no hypothesis (a map has no occupied cell)"
-               : p.best_omega() < options.omega_threshold ? "best omega below the threshold"
-               : p.overlap_cells < options.min_overlap_cells
-                   ? "overlap below min_overlap_cells"
-                   : "wall agreement below min_wall_agreement";
+    if (p.accepted && p.refused_by_priors) {
+      p.accepted = false;  // the priors decided: its note says which ones it contradicts
+    } else if (!p.accepted) {
+      const std::string reason =
+          p.hypotheses.empty()                       ? "no hypothesis (a map has no occupied cell)"
+          : p.best_omega() < options.omega_threshold ? "best omega below the threshold"
+          : p.overlap_cells < options.min_overlap_cells ? "overlap below min_overlap_cells"
+                                                        : "wall agreement below min_wall_agreement";
+      // The priors' note (hypotheses they dropped, or contradicted) stays after the reason. A
+      // pair that fails the thresholds anyway was not refused by the priors.
+      if (p.refused_by_priors) {
+        p.note = reason + "; also, " + p.note.substr(p.note.find("every hypothesis"));
+      } else {
+        p.note = p.note.empty() ? reason : reason + "; " + p.note;
+      }
+      p.refused_by_priors = false;
     }
+    p.edge_hypothesis = p.accepted ? 0 : -1;
   }
 }
 
@@ -145,8 +151,15 @@ void CompositeComponent(const std::vector<const OccupancyGrid*>& maps, const Fle
   }
   std::optional<PreviewColourer> preview;
   if (options.previews && compared_cells) preview.emplace();
-  component.merged = Composite(inputs, resolution_m, options.fusion, options.threads,
-                               reference_input, preview ? &*preview : nullptr);
+  try {
+    component.merged =
+        Composite(inputs, resolution_m, options.fusion, options.threads, reference_input,
+                  preview ? &*preview : nullptr, options.max_map_cells);
+  } catch (const Error& e) {
+    std::string names;
+    for (const int m : component.maps) names += (names.empty() ? "" : ", ") + std::to_string(m + 1);
+    throw Error("compositing maps " + names + " (in job order): " + e.what());
+  }
   if (preview) component.preview = preview->image();
 }
 

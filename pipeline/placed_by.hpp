@@ -9,8 +9,11 @@ enum class PlacedBy {
   kFixed,      // a fixed map: at its given pose
   kReference,  // its component's reference map (its frame, or the site frame with priors)
   kPairs,      // accepted pairs link it to its component's reference (or to a fixed map)
-  kPrior,      // only its known start pose links it to the rest of its component
-  kUnmerged,   // alone in its component
+  // Known start poses put it (and the maps accepted pairs link it to, its group) in the site
+  // frame: no accepted pair links it to a fixed map or, without fixed maps, to the largest
+  // group of the maps with priors (pipeline/fleet_graph.hpp).
+  kPrior,
+  kUnmerged,  // alone in its component
 };
 
 // "fixed", "reference", "pairs", "prior", "unmerged"

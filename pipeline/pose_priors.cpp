@@ -53,6 +53,11 @@ void CheckPriors(const PosePriors& priors, const FixedPoses& fixed, std::size_t 
            << "]; expected finite [metres, radians] > 0";
       throw Error(what.str());
     }
+    if (p.yaw_sigma_rad > kMaxYawSigmaRad) {
+      what << "initial_pose_sigma yaw " << YawLooksLikeDegrees(p.yaw_sigma_rad)
+           << "; expected radians, at most pi";
+      throw Error(what.str());
+    }
     if (IsFixed(fixed, static_cast<int>(m))) {
       what << "a fixed map has no initial_pose (its pose is given exactly by its fixed pose)";
       throw Error(what.str());
@@ -82,14 +87,14 @@ void DropHypothesesAgainstPriors(std::vector<PairOutcome>& pairs, const FixedPos
     const auto known_b = KnownPose(fixed, priors, pair.b);
     if (!known_a || !known_b || pair.hypotheses.empty()) continue;
     std::vector<PairHypothesis> kept;
-    std::vector<int> dropped;  // 1-based, as the report numbers them
+    std::vector<PairOutcome::Dropped> dropped;
     int nearest = -1;
     double nearest_sigmas = std::numeric_limits<double>::infinity();
     for (int h = 0; h < static_cast<int>(pair.hypotheses.size()); ++h) {
       const double sigmas = SigmasFromPriors(pair.hypotheses[h].T_a_b, *known_a, *known_b);
       if (sigmas < nearest_sigmas) nearest = h, nearest_sigmas = sigmas;
       if (sigmas > kPriorContradictionSigmas) {
-        dropped.push_back(h + 1);
+        dropped.push_back({h + 1, sigmas, pair.hypotheses[h]});
       } else {
         kept.push_back(pair.hypotheses[h]);
       }
@@ -115,12 +120,15 @@ void DropHypothesesAgainstPriors(std::vector<PairOutcome>& pairs, const FixedPos
       continue;
     }
     note << "hypothes" << (dropped.size() == 1 ? "is " : "es ");
-    for (std::size_t k = 0; k < dropped.size(); ++k) note << (k ? ", " : "") << dropped[k];
+    for (std::size_t k = 0; k < dropped.size(); ++k) {
+      note << (k ? ", " : "") << dropped[k].search_rank;
+    }
     note << " of the search dropped: more than " << std::setprecision(0)
          << kPriorContradictionSigmas << " sigma from the " << names;
     const bool front_two_kept =
-        dropped.front() > std::min<int>(2, static_cast<int>(pair.hypotheses.size()));
+        dropped.front().search_rank > std::min<int>(2, static_cast<int>(pair.hypotheses.size()));
     pair.hypotheses = std::move(kept);
+    pair.dropped_by_priors = std::move(dropped);
     pair.overlap_cells = pair.hypotheses.front().overlap_cells;
     pair.wall_agreement = pair.hypotheses.front().wall_agreement;
     if (!front_two_kept) {

@@ -20,6 +20,15 @@ nlohmann::json PairJson(const Job& job, const PairOutcome& p) {
                       {"ambiguous", p.ambiguous},
                       {"margin", MarginJson(p.margin_nats)}};
   if (p.accepted) j["edge_hypothesis"] = p.edge_hypothesis;
+  if (!p.dropped_by_priors.empty()) {
+    nlohmann::json& dropped = j["dropped_by_priors"] = nlohmann::json::array();
+    for (const PairOutcome::Dropped& d : p.dropped_by_priors) {
+      nlohmann::json h = HypothesesJson({d.hypothesis}).front();
+      h["search_rank"] = d.search_rank;
+      h["sigmas"] = d.sigmas;
+      dropped.push_back(h);
+    }
+  }
   if (!p.note.empty()) j["note"] = p.note;
   return j;
 }

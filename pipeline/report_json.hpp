@@ -10,8 +10,11 @@
 //   pairs[]: a, b, omega (best), accepted, overlap_cells, wall_agreement (best), ambiguous,
 //            margin (nats; null without a runner-up: core/pose_evidence.hpp), hypotheses [{x,
 //            y, yaw, omega, overlap_cells, wall_agreement}] (b's frame in a's, best first),
-//            edge_hypothesis (accepted), note (why rejected or replaced; a pair whose
-//            hypotheses all contradict the priors: "refused: ...", pipeline/pose_priors.hpp)
+//            edge_hypothesis (accepted), dropped_by_priors [{x, y, yaw, omega,
+//            overlap_cells, wall_agreement, search_rank, sigmas}] (hypotheses the known start
+//            poses dropped, pipeline/pose_priors.hpp), note (why rejected or replaced; a pair
+//            whose best passes the thresholds but whose hypotheses all contradict the priors:
+//            "refused: ...")
 //   timing_ms: load, pairs, refine, composite, write, total; report_html (writing report.html,
 //              pipeline/html_report.hpp, after `total` was taken) when the set is written
 // Jobs with octrees add (pipeline/octree_maps.hpp, AddOctreesToReport): maps[].pose.z and

@@ -138,6 +138,15 @@ py::array_t<std::int8_t> ArrayOf(const fleetmerge::Map& map) {
 
 py::tuple TupleOf(const fleetmerge::Pose2D& p) { return py::make_tuple(p.x, p.y, p.yaw); }
 
+// `fixed`: True or False (a numpy bool too), as a job file's `fixed` takes only booleans.
+bool FixedFrom(const py::object& fixed) {
+  if (!py::isinstance<py::bool_>(fixed) &&
+      std::string(py::str(py::type::of(fixed).attr("__name__"))) != "bool_") {
+    ValueError("fixed must be True or False, got " + std::string(py::repr(fixed)));
+  }
+  return fixed.cast<bool>();
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_fleetmerge, m) {
@@ -146,11 +155,11 @@ PYBIND11_MODULE(_fleetmerge, m) {
 
   py::class_<fleetmerge::Map>(m, "Map")
       .def(py::init([](const py::object& data, const py::object& resolution,
-                       const py::object& origin, const std::string& name, bool fixed,
+                       const py::object& origin, const std::string& name, const py::object& fixed,
                        const py::object& pose, const py::object& initial_pose,
                        const py::object& initial_pose_sigma) {
              fleetmerge::Map map = MapFromArray(data, resolution, origin, name);
-             map.set_fixed(fixed, PoseFrom(pose, "pose"));
+             map.set_fixed(FixedFrom(fixed), PoseFrom(pose, "pose"));
              SetInitialPose(map, initial_pose, initial_pose_sigma);
              return map;
            }),
@@ -167,7 +176,10 @@ PYBIND11_MODULE(_fleetmerge, m) {
       .def_property("name", &fleetmerge::Map::name, &fleetmerge::Map::set_name)
       .def_property(
           "fixed", &fleetmerge::Map::fixed,
-          [](fleetmerge::Map& map, bool fixed) { map.set_fixed(fixed, map.pose()); },
+          [](fleetmerge::Map& map, const py::object& fixed) {
+            const bool is_fixed = FixedFrom(fixed);
+            map.set_fixed(is_fixed, is_fixed ? map.pose() : fleetmerge::Pose2D{});
+          },
           "a fixed (base) map never moves in merge: the merged frame is its frame")
       .def_property(
           "pose", [](const fleetmerge::Map& map) { return TupleOf(map.pose()); },

@@ -56,7 +56,10 @@ TEST(Api, FixedMapsKeepTheirPose) {
   fleetmerge::Map base({0, 100, 0, 100}, 2, 2, 0.05, {}, "base");
   EXPECT_FALSE(base.fixed());
   EXPECT_THROW(base.set_fixed(true, {0.0, std::nan(""), 0.0}), std::invalid_argument);
-  EXPECT_FALSE(base.fixed());  // unchanged by the refused call
+  EXPECT_THROW(base.set_fixed(true, {0.0, 0.0, 90.0}), std::invalid_argument);  // degrees
+  // A pose without fixed would be ignored: refused, as a job file refuses `pose` alone.
+  EXPECT_THROW(base.set_fixed(false, {1.0, 0.0, 0.0}), std::invalid_argument);
+  EXPECT_FALSE(base.fixed());  // unchanged by the refused calls
   base.set_fixed(true, {1.5, -2.0, 0.3});
   const fleetmerge::Map robot({100, 0, 100, 0}, 2, 2, 0.05, {}, "robot");
   // Two maps that overlap too little to pair: each its own component; the base keeps its pose.
@@ -79,6 +82,8 @@ TEST(Api, AMapThatPairsWithNoneIsPlacedAtItsInitialPose) {
   EXPECT_THROW(robot.set_initial_pose({0.0, 0.0, std::nan("")}), std::invalid_argument);
   EXPECT_THROW(robot.set_initial_pose({0.0, 0.0, 0.0}, -0.5), std::invalid_argument);
   EXPECT_THROW(robot.set_initial_pose({0.0, 0.0, 0.0}, 0.5, 0.0), std::invalid_argument);
+  EXPECT_THROW(robot.set_initial_pose({0.0, 0.0, 90.0}), std::invalid_argument);
+  EXPECT_THROW(robot.set_initial_pose({0.0, 0.0, 0.0}, 0.5, 10.0), std::invalid_argument);
   EXPECT_FALSE(robot.initial_pose().has_value());  // unchanged by the refused calls
   robot.set_initial_pose({4.0, 1.0, -0.2});
   EXPECT_EQ(robot.initial_pose_sigma_m(), 0.5);  // the documented defaults

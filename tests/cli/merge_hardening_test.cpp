@@ -92,7 +92,7 @@ TEST_F(MergeHardeningTest, CellLimitFromCommandLineAndJobFile) {
   WriteFile(dir_ / "jobs.yaml", "jobs:\n  - {name: small, maps: [" + A().string() + ", " +
                                     B().string() + "], output: o1, max_map_cells: 1000}\n" +
                                     "  - {name: fine, maps: [" + A().string() + ", " +
-                                    B().string() + "], output: o2, max_map_cells: 200000}\n");
+                                    B().string() + "], output: o2, max_map_cells: 2000000}\n");
   run = Fleetmerge("merge --quiet " + ShellQuote(dir_ / "jobs.yaml"));
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_NE(run.err.find("job 'small' failed"), std::string::npos) << run.err;

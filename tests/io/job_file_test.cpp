@@ -538,6 +538,21 @@ TEST_F(JobFileTest, PriorErrorsNameTheKey) {
               "maps[0].initial_pose_sigma", "add 'initial_pose: [x, y, yaw]'");
   ExpectError("maps:\n  - {path: maps/a.yaml, fixed: true, initial_pose: [0, 0, 0]}\noutput: out\n",
               2, "maps[0].initial_pose", "a fixed map's pose is its 'pose', exactly");
+  // Radians, not degrees: a quarter turn written as 90, ten degrees of sigma written as 10.
+  ExpectError("maps:\n  - {path: maps/a.yaml, initial_pose: [1, 2, 90]}\noutput: out\n", 2,
+              "maps[0].initial_pose[2]",
+              "expected a yaw in radians, at most 2 pi in magnitude: 90 rad looks like degrees "
+              "(90 deg is 1.5708 rad), got '90'");
+  ExpectError("maps:\n  - {path: maps/a.yaml, fixed: true, pose: [1, 2, -180]}\noutput: out\n", 2,
+              "maps[0].pose[2]", "-180 rad looks like degrees");
+  ExpectError(
+      "maps:\n  - {path: maps/a.yaml, initial_pose: [0, 0, 0], initial_pose_sigma: [0.5, 10]}\n"
+      "output: out\n",
+      2, "maps[0].initial_pose_sigma[1]",
+      "expected a yaw sigma in radians, at most pi: 10 rad looks like degrees");
+  ExpectError(
+      "maps:\n  - {path: maps/a.yaml, fixed: true, initial_pose_sigma: [0.5, 0.1]}\noutput: out\n",
+      2, "maps[0].initial_pose_sigma", "a fixed map's pose is exact: remove 'initial_pose_sigma'");
   ExpectError("maps:\n  - {path: maps/a.yaml, initial_pos: [0, 0, 0]}\noutput: out\n", 2,
               "maps[0].initial_pos", "allowed here: path, name, topic, fixed, pose, initial_pose");
 }

@@ -272,6 +272,119 @@ TEST(Priors, AWrongPriorGetsItsPairRefusedWithAReason) {
               PlacedByName(with.placed_by[wrong]), yaw_deg, cells);
 }
 
+TEST(Priors, AReferenceThatOverlapsNobodyIsPlacedByItsPrior) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  // The robot of the other building first: the job's reference, without a fixed map. The site
+  // frame is the priors', and pairs link the building's robots to each other, not to it.
+  const SiteCase c = SimulateSite(5, 1, true);
+  const int foreign = static_cast<int>(c.sim.maps.size()) - 1;
+  std::vector<const OccupancyGrid*> maps = {&c.sim.maps[foreign]};
+  PosePriors priors = {SlightlyOffPrior(c, foreign)};
+  for (int r = 0; r < foreign; ++r) {
+    maps.push_back(&c.sim.maps[r]);
+    priors.push_back(SlightlyOffPrior(c, r));
+  }
+  const FleetResult result = MergeFleet(maps, 0, FixedPoses{}, priors, FleetOptions{});
+  ASSERT_EQ(result.components.size(), 1u);
+  int by_pairs = 0;
+  for (int m = 0; m < static_cast<int>(maps.size()); ++m) {
+    std::printf("map %d: %s\n", m + 1, PlacedByName(result.placed_by[m]));
+    by_pairs += result.placed_by[m] == PlacedBy::kPairs;
+    EXPECT_NE(result.placed_by[m], PlacedBy::kReference) << "map " << m + 1;
+  }
+  EXPECT_EQ(result.placed_by[0], PlacedBy::kPrior);
+  EXPECT_GE(by_pairs, 3);  // the largest group, which the priors place as a whole
+  const Pose2& placed = result.T_component_map[0];
+  EXPECT_NEAR(placed.x_m(), priors[0]->T_site_map.x_m(), 1e-6);
+  EXPECT_NEAR(placed.y_m(), priors[0]->T_site_map.y_m(), 1e-6);
+}
+
+// configs/site_with_priors.yaml in memory: run1 of the ROBOTIS corridor fixed at (10, 5, 0), runs
+// 2-4 with priors; run4 shares too little with any map for a pair.
+struct CorridorSite {
+  std::vector<OccupancyGrid> grids;
+  FixedPoses fixed;
+  PosePriors priors;
+  std::vector<const OccupancyGrid*> maps() const {
+    std::vector<const OccupancyGrid*> out;
+    for (const OccupancyGrid& g : grids) out.push_back(&g);
+    return out;
+  }
+};
+
+CorridorSite Corridor() {
+  const auto dir = *testing::SharedMapsDir();
+  CorridorSite site;
+  for (int run = 1; run <= 4; ++run) {
+    site.grids.push_back(
+        LoadMap(dir / ("robotis_corridor_run" + std::to_string(run) + ".yaml")).grid);
+  }
+  site.fixed = {Pose2(10.0, 5.0, 0.0), std::nullopt, std::nullopt, std::nullopt};
+  site.priors = {std::nullopt, PosePrior{Pose2(10.3, 4.7, -0.1)},
+                 PosePrior{Pose2(10.0, 5.0, 0.0), 0.3, 0.1},
+                 PosePrior{Pose2(10.0, 5.0, 0.0), 1.0, 0.35}};
+  return site;
+}
+
+TEST(Priors, APairThatFailsTheThresholdsAnywayIsNotRefusedByThem) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const CorridorSite site = Corridor();
+  const FleetResult result = MergeFleet(site.maps(), 0, site.fixed, site.priors, FleetOptions{});
+  const PairOutcome& site_run4 = result.pairs[2];  // (0, 1), (0, 2), (0, 3), ...
+  ASSERT_EQ(site_run4.b, 3);
+  std::printf("site-run4: %s\n", site_run4.note.c_str());
+  EXPECT_FALSE(site_run4.accepted);
+  EXPECT_FALSE(site_run4.refused_by_priors);  // its best omega is 0.54: no pair either way
+  EXPECT_EQ(site_run4.note.rfind("best omega below the threshold; also, every hypothesis "
+                                 "contradicts the fixed pose of map 1 and initial_pose of map 4",
+                                 0),
+            0u)
+      << site_run4.note;
+  EXPECT_EQ(result.placed_by, (std::vector<PlacedBy>{PlacedBy::kFixed, PlacedBy::kPairs,
+                                                     PlacedBy::kPairs, PlacedBy::kPrior}));
+}
+
+TEST(Priors, HypothesesThePriorsDropStayInTheResult) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const CorridorSite site = Corridor();
+  const FleetResult without = MergeFleet(site.maps(), 0, site.fixed, FleetOptions{});
+  const FleetResult with = MergeFleet(site.maps(), 0, site.fixed, site.priors, FleetOptions{});
+  const PairOutcome& free = without.pairs[0];  // site-run2
+  const PairOutcome& judged = with.pairs[0];
+  ASSERT_TRUE(judged.accepted);
+  ASSERT_FALSE(judged.dropped_by_priors.empty());
+  // Kept and dropped together are the search's hypotheses, each dropped one in its search rank.
+  EXPECT_EQ(judged.hypotheses.size() + judged.dropped_by_priors.size(), free.hypotheses.size());
+  for (const PairOutcome::Dropped& d : judged.dropped_by_priors) {
+    ASSERT_GE(d.search_rank, 1);
+    const PairHypothesis& searched = free.hypotheses[d.search_rank - 1];
+    EXPECT_EQ(d.hypothesis.omega, searched.omega);
+    EXPECT_EQ(d.hypothesis.T_a_b.x_m(), searched.T_a_b.x_m());
+    EXPECT_GT(d.sigmas, kPriorContradictionSigmas);
+    EXPECT_NEAR(
+        d.sigmas,
+        SigmasFromPriors(searched.T_a_b, PosePrior{*site.fixed[0], 0.0, 0.0}, *site.priors[1]),
+        1e-12);
+  }
+  EXPECT_NE(judged.note.find("of the search dropped"), std::string::npos) << judged.note;
+}
+
+TEST(Priors, PosesKilometresApartAreRefusedBeforeAllocating) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  CorridorSite site = Corridor();
+  site.priors[3]->T_site_map = Pose2(1e5, 0.0, 0.0);  // run4, 100 km off: a typo
+  try {
+    MergeFleet(site.maps(), 0, site.fixed, site.priors, FleetOptions{});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("compositing maps 1, 2, 3, 4 (in job order): the merged "
+                                         "map would be 1999"),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("check fixed poses and initial_poses"), std::string::npos);
+  }
+}
+
 TEST(Priors, BadPriorsAreRefused) {
   OccupancyGrid a(GridGeometry(0.05, {4, 4}));
   OccupancyGrid b(GridGeometry(0.05, {4, 4}));
@@ -298,6 +411,9 @@ TEST(Priors, BadPriorsAreRefused) {
   fixed[1] = Pose2();
   expect_error(fixed, priors, "a fixed map has no initial_pose");
   expect_error({}, PosePriors(3), "initial poses: 3 given for 2 maps");
+  priors.assign(2, std::nullopt);
+  priors[1] = PosePrior{Pose2(), 0.5, 10.0};  // ten degrees written as 10
+  expect_error({}, priors, "initial_pose_sigma yaw 10 rad looks like degrees (10 deg is 0.174533");
 }
 
 TEST(Priors, SigmasFromPriorsCombineBothMapsAndTheLeverArm) {

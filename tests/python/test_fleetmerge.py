@@ -158,6 +158,16 @@ def test_a_fixed_map_never_moves_and_the_others_follow_it():
     as_keywords = fleetmerge.Map(robot.data, robot.resolution, robot.origin, fixed=True,
                                  pose=(1, 2, 3))
     assert as_keywords.fixed and as_keywords.pose == (1, 2, 3)
+    # As a job file: `fixed` is a boolean, a pose needs fixed, yaws are radians.
+    for loose in (1, None, "yes"):
+        with pytest.raises(ValueError, match="fixed must be True or False"):
+            fleetmerge.Map(robot.data, robot.resolution, fixed=loose)
+    with pytest.raises(ValueError, match="a pose is the pose of a fixed map"):
+        fleetmerge.Map(robot.data, robot.resolution, pose=(1, 2, 3))
+    with pytest.raises(ValueError, match="90 rad looks like degrees"):
+        fleetmerge.Map(robot.data, robot.resolution, fixed=True, pose=(1, 2, 90))
+    as_keywords.fixed = False  # unfixed, it has no pose
+    assert as_keywords.pose == (0, 0, 0)
     with pytest.raises(ValueError, match=r"pose\[1\] must be finite"):
         base.pose = (0.0, float("nan"), 0.0)
     with pytest.raises(ValueError, match="pose must be \\(x, y, yaw\\): 3 numbers, got 2"):

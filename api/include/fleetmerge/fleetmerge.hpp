@@ -63,7 +63,9 @@ class Map {
   void set_name(std::string name) { name_ = std::move(name); }
   // A fixed (base) map never moves in Merge: `pose` is its map frame in the merged frame, which
   // is its frame (job files' `fixed: true`, `pose: [x, y, yaw]`). The first fixed map is the
-  // reference. set_fixed throws std::invalid_argument, naming the map, for a non-finite pose.
+  // reference. set_fixed throws std::invalid_argument, naming the map, for a non-finite pose, a
+  // yaw beyond 2 pi in magnitude (radians, not degrees), or a pose other than the identity with
+  // fixed == false (a job file's `pose` without `fixed: true`).
   bool fixed() const { return fixed_; }
   const Pose2D& pose() const { return pose_; }
   void set_fixed(bool fixed, Pose2D pose = {});
@@ -72,7 +74,8 @@ class Map {
   // (metres, radians; default 0.5 m and 10 deg). Merge refuses a pair whose hypotheses all
   // contradict two maps' known poses beyond 3 sigma, and places a map that overlaps no other at
   // its prior (MapPlacement::placed_by "prior"). set_initial_pose throws std::invalid_argument,
-  // naming the map, for a non-finite pose or a sigma that is not finite and > 0; a fixed map
+  // naming the map, for a non-finite pose, a sigma that is not finite and > 0, a yaw beyond
+  // 2 pi in magnitude or a yaw sigma beyond pi (radians, not degrees); a fixed map
   // with an initial pose is refused by Merge. clear_initial_pose removes it.
   const std::optional<Pose2D>& initial_pose() const { return initial_pose_; }
   double initial_pose_sigma_m() const { return initial_pose_sigma_m_; }
