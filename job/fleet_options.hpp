@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "core/occupancy_grid.hpp"
 #include "job/fusion_mode.hpp"
@@ -45,6 +47,9 @@ struct FleetOptions {
   // Colour each merged map's preview while compositing (FleetComponent::preview): a job that
   // writes its results asks for them.
   bool previews = false;
+  // The maps' names, in job order, for notes and errors (pipeline/map_label.hpp); empty: maps
+  // are named by their number.
+  std::vector<std::string> map_names;
 };
 
 }  // namespace fleetmerge

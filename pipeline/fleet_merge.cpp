@@ -13,6 +13,7 @@
 #include "pipeline/composite.hpp"
 #include "pipeline/corroboration.hpp"
 #include "pipeline/fleet_graph.hpp"
+#include "pipeline/map_label.hpp"
 #include "pipeline/pair_cache.hpp"
 #include "pipeline/pose_priors.hpp"
 #include "pipeline/preview.hpp"
@@ -80,10 +81,10 @@ void AcceptByThreshold(std::vector<PairOutcome>& pairs, const FleetOptions& opti
 // Rejects every accepted edge across `split`: the maps on its two sides that overlap under the
 // solved poses contradict each other (pipeline/corroboration.hpp). Returns whether it cut any:
 // maps tied by their known poses (fixed, or priors) have no edge between them to cut.
-bool CutSplit(const ComponentSplit& split, std::vector<PairOutcome>& pairs) {
+bool CutSplit(const ComponentSplit& split, std::vector<PairOutcome>& pairs,
+              const std::vector<std::string>& map_names) {
   bool cut = false;
-  std::string names;
-  for (const int m : split.detached) names += (names.empty() ? "" : ", ") + std::to_string(m + 1);
+  const std::string names = MapList(map_names, split.detached);
   const auto detached = [&](int m) {
     return std::find(split.detached.begin(), split.detached.end(), m) != split.detached.end();
   };
@@ -156,9 +157,8 @@ void CompositeComponent(const std::vector<const OccupancyGrid*>& maps, const Fle
         Composite(inputs, resolution_m, options.fusion, options.threads, reference_input,
                   preview ? &*preview : nullptr, options.max_map_cells);
   } catch (const Error& e) {
-    std::string names;
-    for (const int m : component.maps) names += (names.empty() ? "" : ", ") + std::to_string(m + 1);
-    throw Error("compositing maps " + names + " (in job order): " + e.what());
+    throw Error("compositing maps " + MapList(options.map_names, component.maps) +
+                JobOrderNote(options.map_names) + ": " + e.what());
   }
   if (preview) component.preview = preview->image();
 }
@@ -172,7 +172,8 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
 
 namespace {
 
-void CheckFixed(const FixedPoses& fixed, std::size_t map_count, int reference) {
+void CheckFixed(const FixedPoses& fixed, std::size_t map_count, int reference,
+                const std::vector<std::string>& names) {
   if (fixed.empty()) return;
   if (fixed.size() != map_count) {
     throw Error("fixed map poses: " + std::to_string(fixed.size()) + " given for " +
@@ -185,15 +186,16 @@ void CheckFixed(const FixedPoses& fixed, std::size_t map_count, int reference) {
     const Pose2& T = *fixed[m];
     if (!std::isfinite(T.x_m()) || !std::isfinite(T.y_m()) || !std::isfinite(T.yaw_rad())) {
       std::ostringstream what;
-      what << "map " << m + 1 << " (in job order) is fixed with a non-finite pose [" << T.x_m()
-           << ", " << T.y_m() << ", " << T.yaw_rad() << "]; expected finite [x, y, yaw]";
+      what << MapLabel(names, static_cast<int>(m)) << JobOrderNote(names)
+           << " is fixed with a non-finite pose [" << T.x_m() << ", " << T.y_m() << ", "
+           << T.yaw_rad() << "]; expected finite [x, y, yaw]";
       throw Error(what.str());
     }
   }
   if (first >= 0 && reference != first) {
-    throw Error("with fixed maps the reference must be the first fixed map (map " +
-                std::to_string(first + 1) + " in job order), not map " +
-                std::to_string(reference + 1));
+    throw Error("with fixed maps the reference must be the first fixed map (" +
+                MapLabel(names, first) + JobOrderNote(names) + "), not " +
+                MapLabel(names, reference));
   }
 }
 
@@ -212,8 +214,12 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   if (reference < 0 || reference >= static_cast<int>(maps.size())) {
     throw Error("the reference map index is out of range");
   }
-  CheckFixed(fixed, maps.size(), reference);
-  CheckPriors(priors, fixed, maps.size());
+  if (!options.map_names.empty() && options.map_names.size() != maps.size()) {
+    throw Error("map names: " + std::to_string(options.map_names.size()) + " given for " +
+                std::to_string(maps.size()) + " maps (one per map, or none)");
+  }
+  CheckFixed(fixed, maps.size(), reference, options.map_names);
+  CheckPriors(priors, fixed, maps.size(), options.map_names);
   FleetResult result;
   result.resolution_m = options.resolution_m;
   if (!(result.resolution_m > 0.0)) {  // default: the finest of the maps
@@ -233,7 +239,7 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   result.timing.pairs_ms = MillisecondsSince(start);
 
   start = std::chrono::steady_clock::now();
-  DropHypothesesAgainstPriors(result.pairs, fixed, priors);
+  DropHypothesesAgainstPriors(result.pairs, fixed, priors, options.map_names);
   AcceptByThreshold(result.pairs, options);
   FleetGraph graph = SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference,
                                      options.pose_graph, fixed, priors);
@@ -258,7 +264,7 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
         RejectUnconfirmedAmbiguous(result.pairs[*ambiguous]);
       } else {
         const auto split = MostContradictedSplit(verdicts, graph.component_of);
-        if (!split || !CutSplit(*split, result.pairs)) break;
+        if (!split || !CutSplit(*split, result.pairs, options.map_names)) break;
       }
     }
     graph = SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference,

@@ -216,6 +216,7 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
     }
     FleetOptions fleet_options = job.options;
     fleet_options.previews = options.write;  // coloured while compositing: one sampling pass
+    for (const JobMap& map : job.maps) fleet_options.map_names.push_back(map.name);
     outcome.result = MergeFleet(grids, reference, fixed, priors, fleet_options, options.progress,
                                 cache ? &*cache : nullptr);
     if (cache) outcome.cache = cache->stats();  // MergeFleet closed it after the pairs

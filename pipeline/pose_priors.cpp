@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "pipeline/map_label.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -23,15 +24,15 @@ std::optional<PosePrior> KnownPose(const FixedPoses& fixed, const PosePriors& pr
   return std::nullopt;
 }
 
-// "initial_pose of map 3" or "fixed pose of map 1" (maps numbered in job order, from 1).
-std::string KnownPoseName(const FixedPoses& fixed, int m) {
-  return (IsFixed(fixed, m) ? "fixed pose of map " : "initial_pose of map ") +
-         std::to_string(m + 1);
+// "initial_pose of map 'run3'" or "fixed pose of map 1" (pipeline/map_label.hpp).
+std::string KnownPoseName(const FixedPoses& fixed, const std::vector<std::string>& names, int m) {
+  return (IsFixed(fixed, m) ? "fixed pose of " : "initial_pose of ") + MapLabel(names, m);
 }
 
 }  // namespace
 
-void CheckPriors(const PosePriors& priors, const FixedPoses& fixed, std::size_t map_count) {
+void CheckPriors(const PosePriors& priors, const FixedPoses& fixed, std::size_t map_count,
+                 const std::vector<std::string>& names) {
   if (priors.empty()) return;
   if (priors.size() != map_count) {
     throw Error("initial poses: " + std::to_string(priors.size()) + " given for " +
@@ -41,7 +42,7 @@ void CheckPriors(const PosePriors& priors, const FixedPoses& fixed, std::size_t 
     if (!priors[m]) continue;
     const PosePrior& p = *priors[m];
     std::ostringstream what;
-    what << "map " << m + 1 << " (in job order): ";
+    what << MapLabel(names, static_cast<int>(m)) << JobOrderNote(names) << ": ";
     if (!Finite(p.T_site_map)) {
       what << "initial_pose [" << p.T_site_map.x_m() << ", " << p.T_site_map.y_m() << ", "
            << p.T_site_map.yaw_rad() << "] is not finite; expected finite [x, y, yaw]";
@@ -79,7 +80,7 @@ double SigmasFromPriors(const Pose2& T_a_b, const PosePrior& a, const PosePrior&
 }
 
 void DropHypothesesAgainstPriors(std::vector<PairOutcome>& pairs, const FixedPoses& fixed,
-                                 const PosePriors& priors) {
+                                 const PosePriors& priors, const std::vector<std::string>& names) {
   if (priors.empty()) return;
   for (PairOutcome& pair : pairs) {
     if (IsFixed(fixed, pair.a) && IsFixed(fixed, pair.b)) continue;
@@ -100,7 +101,8 @@ void DropHypothesesAgainstPriors(std::vector<PairOutcome>& pairs, const FixedPos
       }
     }
     if (dropped.empty()) continue;
-    const std::string names = KnownPoseName(fixed, pair.a) + " and " + KnownPoseName(fixed, pair.b);
+    const std::string known =
+        KnownPoseName(fixed, names, pair.a) + " and " + KnownPoseName(fixed, names, pair.b);
     std::ostringstream note;
     note << std::fixed;
     if (kept.empty()) {
@@ -110,7 +112,7 @@ void DropHypothesesAgainstPriors(std::vector<PairOutcome>& pairs, const FixedPos
           (predicted_b.translation_m() - known_b->T_site_map.translation_m()).norm();
       const double off_deg =
           std::abs(WrapAngle(predicted_b.yaw_rad() - known_b->T_site_map.yaw_rad())) * 180.0 / M_PI;
-      note << "refused: every hypothesis contradicts the " << names << "; the nearest, hypothesis "
+      note << "refused: every hypothesis contradicts the " << known << "; the nearest, hypothesis "
            << nearest + 1 << ", is " << std::setprecision(1) << nearest_sigmas
            << " sigma from them (" << std::setprecision(2) << off_m << " m, "
            << std::setprecision(1) << off_deg << " deg; at most " << std::setprecision(0)
@@ -124,7 +126,7 @@ void DropHypothesesAgainstPriors(std::vector<PairOutcome>& pairs, const FixedPos
       note << (k ? ", " : "") << dropped[k].search_rank;
     }
     note << " of the search dropped: more than " << std::setprecision(0)
-         << kPriorContradictionSigmas << " sigma from the " << names;
+         << kPriorContradictionSigmas << " sigma from the " << known;
     const bool front_two_kept =
         dropped.front().search_rank > std::min<int>(2, static_cast<int>(pair.hypotheses.size()));
     pair.hypotheses = std::move(kept);

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "job/pose_prior.hpp"
@@ -27,7 +28,9 @@ constexpr double kPriorContradictionSigmas = 3.0;
 // Throws fleetmerge::Error for a list of another length than map_count (empty is fine: no
 // priors), a non-finite pose or sigma, a sigma <= 0, or a prior on a fixed map (its pose is
 // given exactly by `pose`).
-void CheckPriors(const PosePriors& priors, const FixedPoses& fixed, std::size_t map_count);
+// Maps are named by `names` (pipeline/map_label.hpp).
+void CheckPriors(const PosePriors& priors, const FixedPoses& fixed, std::size_t map_count,
+                 const std::vector<std::string>& names = {});
 
 // How many sigmas hypothesis T_a_b is from the known poses of a and b (see above).
 double SigmasFromPriors(const Pose2& T_a_b, const PosePrior& a, const PosePrior& b);
@@ -36,6 +39,7 @@ double SigmasFromPriors(const Pose2& T_a_b, const PosePrior& a, const PosePrior&
 // none (PairOutcome::refused_by_priors, with a note). Keeps a pair's measured overlap, walls and
 // margin those of its new best.
 void DropHypothesesAgainstPriors(std::vector<PairOutcome>& pairs, const FixedPoses& fixed,
-                                 const PosePriors& priors);
+                                 const PosePriors& priors,
+                                 const std::vector<std::string>& names = {});
 
 }  // namespace fleetmerge

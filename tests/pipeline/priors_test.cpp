@@ -367,6 +367,20 @@ TEST(Priors, HypothesesThePriorsDropStayInTheResult) {
         1e-12);
   }
   EXPECT_NE(judged.note.find("of the search dropped"), std::string::npos) << judged.note;
+  // A job names its maps in notes (FleetOptions::map_names); the library without names numbers
+  // them.
+  EXPECT_NE(judged.note.find("from the fixed pose of map 1 and initial_pose of map 2"),
+            std::string::npos)
+      << judged.note;
+  FleetOptions named;
+  named.map_names = {"site", "run2", "run3", "run4"};
+  const FleetResult by_name = MergeFleet(site.maps(), 0, site.fixed, site.priors, named);
+  EXPECT_NE(by_name.pairs[0].note.find("from the fixed pose of map 'site' and initial_pose of "
+                                       "map 'run2'"),
+            std::string::npos)
+      << by_name.pairs[0].note;
+  named.map_names.pop_back();
+  EXPECT_THROW(MergeFleet(site.maps(), 0, site.fixed, site.priors, named), Error);
 }
 
 TEST(Priors, PosesKilometresApartAreRefusedBeforeAllocating) {

@@ -203,8 +203,9 @@ def test_initial_poses_refuse_contradicting_pairs_and_place_maps():
     refused = fleetmerge.merge([base, robot], threads=1).report
     pair = refused["pairs"][0]
     assert not pair["accepted"]
-    assert pair["note"].startswith("refused: every hypothesis contradicts the fixed pose of map 1 "
-                                   "and initial_pose of map 2")
+    assert pair["note"].startswith(
+        "refused: every hypothesis contradicts the fixed pose of map 'robotis_corridor_run2' and "
+        "initial_pose of map 'robotis_corridor_run3'")
     assert refused["maps"][1]["placed_by"] == "prior"
     got = refused["maps"][1]["pose"]
     assert (got["x"], got["y"], got["yaw"]) == pytest.approx(wrong, abs=1e-9)
