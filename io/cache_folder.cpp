@@ -141,8 +141,9 @@ std::optional<std::string> CacheFolder::Read(const ContentDigest& key) {
     fs::remove(path, ec);
     return std::nullopt;
   }
-  // Used now: the last to be evicted (a failure only makes it look older).
+  // Used now: the last to be evicted by later jobs (a failure only makes it look older to them).
   fs::last_write_time(path, fs::file_time_type::clock::now(), ec);
+  MarkUsed(key);
   return payload;
 }
 
@@ -153,14 +154,21 @@ void CacheFolder::Discard(const ContentDigest& key) {
   fs::remove(EntryPath(key), ec);
 }
 
+void CacheFolder::MarkUsed(const ContentDigest& key) {
+  const std::lock_guard<std::mutex> lock(used_mutex_);
+  used_.insert(EntryPath(key).filename().string());
+}
+
 void CacheFolder::Write(const ContentDigest& key, const std::string& payload) {
   CheckLocked();
   WriteFileAtomically(EntryPath(key), CacheEntryBytes(key, version_, payload), {},
                       AtomicWrite::kNoSync);
+  MarkUsed(key);
 }
 
-int CacheFolder::Evict() {
+CacheEviction CacheFolder::Evict() {
   CheckLocked();
+  const std::lock_guard<std::mutex> lock(used_mutex_);
   struct Entry {
     fs::file_time_type used;
     fs::path path;
@@ -168,7 +176,8 @@ int CacheFolder::Evict() {
   };
   std::vector<Entry> entries;
   std::int64_t total = 0;
-  int removed = 0;
+  CacheEviction eviction;
+  int& removed = eviction.removed;
   std::error_code ec;
   for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
@@ -185,8 +194,13 @@ int CacheFolder::Evict() {
     const auto bytes = static_cast<std::int64_t>(it->file_size(entry_ec));
     const fs::file_time_type used = it->last_write_time(entry_ec);
     if (entry_ec) continue;
-    entries.push_back({used, it->path(), bytes});
     total += bytes;
+    if (used_.count(name) != 0) {  // this job's: counted, never a candidate
+      ++eviction.in_use;
+      eviction.in_use_bytes += bytes;
+      continue;
+    }
+    entries.push_back({used, it->path(), bytes});
   }
   std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
     return std::tie(a.used, a.path) < std::tie(b.used, b.path);
@@ -199,7 +213,8 @@ int CacheFolder::Evict() {
       ++removed;
     }
   }
-  return removed;
+  eviction.over_bound = eviction.in_use_bytes > max_bytes_;
+  return eviction;
 }
 
 }  // namespace fleetmerge

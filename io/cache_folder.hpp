@@ -18,13 +18,18 @@
 // One job at a time: the folder is locked (io/folder_lock.hpp, label "cache folder") from the
 // constructor to Unlock (or the destructor). A second job sharing the cache waits for the first and
 // then finds the first job's entries. Entries read are marked as used (their modification time),
-// and Evict removes the least recently used until the folder fits its size bound.
+// and Evict removes the least recently used until the folder fits its size bound. The entries this
+// opening read or wrote are never evicted, whatever their times say (a clock that was ahead, a
+// cache copied with its times) and whatever the bound: evicting them would make the job's re-run
+// compute them again, which is what the cache is for.
 #pragma once
 
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <mutex>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "io/content_hash.hpp"
@@ -37,6 +42,14 @@ struct CacheFolderOptions {
   double lock_wait_s = 0.0;  // for another job using the folder (0: fail at once)
   FolderLock::WaitNotice lock_notice;
   std::string job;  // who holds the lock (named to a waiting job)
+};
+
+// What an eviction did.
+struct CacheEviction {
+  int removed = 0;  // entries removed (never one of this opening's)
+  int in_use = 0;   // entries this opening read or wrote, all kept
+  std::int64_t in_use_bytes = 0;
+  bool over_bound = false;  // the entries in use alone take more than the bound
 };
 
 class CacheFolder {
@@ -62,9 +75,9 @@ class CacheFolder {
   // when it cannot be written. Safe to call from several threads.
   void Write(const ContentDigest& key, const std::string& payload);
   // Removes the least recently used entries (and temporary files of killed jobs, and entries of
-  // the older format 1) until the entries take at most options.max_bytes. Returns how many
-  // entries it removed.
-  int Evict();
+  // the older format 1) until the entries take at most options.max_bytes, but never an entry
+  // this opening read or wrote: when those alone take more, they are all kept (over_bound).
+  CacheEviction Evict();
 
   // Releases the folder's lock: another job may use it now. Read, Write and Evict must not be
   // called afterwards (they throw fleetmerge::Error).
@@ -76,11 +89,14 @@ class CacheFolder {
 
  private:
   void CheckLocked() const;
+  void MarkUsed(const ContentDigest& key);
   std::filesystem::path dir_;
   std::string version_;
   std::int64_t max_bytes_;
   std::optional<FolderLock> lock_;
   std::atomic<int> rejected_{0};
+  std::mutex used_mutex_;
+  std::set<std::string> used_;  // file names of the entries read or written
 };
 
 // The entry file's bytes for `payload` (exposed for tests that forge entries).

@@ -250,6 +250,8 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
                                {"maps_prepared", stats.maps_prepared},
                                {"entries_rejected", stats.rejected},
                                {"entries_evicted", stats.evicted},
+                               {"entries_in_use", stats.entries_in_use},
+                               {"bound_below_job", stats.over_bound},
                                {"write_failures", stats.write_failures}};
     if (!stats.first_write_error.empty()) {
       outcome.report["cache"]["first_write_error"] = stats.first_write_error;

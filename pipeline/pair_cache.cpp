@@ -181,7 +181,7 @@ void PairCache::StorePair(const ContentDigest& options, const ContentDigest& a,
 void PairCache::Close() {
   if (closed_) return;
   closed_ = true;
-  evicted_ += folder_.Evict();
+  eviction_ = folder_.Evict();
   folder_.Unlock();
 }
 
@@ -197,7 +197,10 @@ PairCacheStats PairCache::stats() const {
   stats.pairs_computed = pairs_computed_;
   stats.maps_prepared = maps_prepared_;
   stats.rejected = folder_.rejected();
-  stats.evicted = evicted_;
+  stats.evicted = eviction_.removed;
+  stats.entries_in_use = eviction_.in_use;
+  stats.in_use_bytes = eviction_.in_use_bytes;
+  stats.over_bound = eviction_.over_bound;
   stats.write_failures = write_failures_;
   const std::lock_guard<std::mutex> lock(error_mutex_);
   stats.first_write_error = first_write_error_;

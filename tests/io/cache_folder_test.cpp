@@ -114,7 +114,7 @@ TEST_F(CacheFolderTest, EvictsTheLeastRecentlyUsedBeyondTheBound) {
   ft::WriteFile(dir_ / "notes.txt", "a user's file, not an entry");
   CacheFolder cache(dir_, "v", Options(3 * entry_bytes));
   ASSERT_TRUE(cache.Read(Key("0")));
-  EXPECT_EQ(cache.Evict(), 3);
+  EXPECT_EQ(cache.Evict().removed, 3);
   EXPECT_TRUE(cache.Read(Key("0")));   // used last
   EXPECT_FALSE(cache.Read(Key("1")));  // the oldest unused ones went
   EXPECT_FALSE(cache.Read(Key("2")));
@@ -123,7 +123,54 @@ TEST_F(CacheFolderTest, EvictsTheLeastRecentlyUsedBeyondTheBound) {
   EXPECT_TRUE(cache.Read(Key("5")));
   EXPECT_FALSE(fs::exists(temp));
   EXPECT_TRUE(fs::exists(dir_ / "notes.txt"));
-  EXPECT_EQ(cache.Evict(), 0);
+  EXPECT_EQ(cache.Evict().removed, 0);
+}
+
+// Entries whose times lie in the future (a clock that was ahead, a cache copied with its times)
+// look more recently used than the ones this job just wrote; the job's own are kept anyway and
+// the others go.
+TEST_F(CacheFolderTest, EvictionNeverRemovesTheEntriesThisOpeningUsed) {
+  const std::string payload(1000, 'x');
+  const std::int64_t entry_bytes =
+      static_cast<std::int64_t>(CacheEntryBytes(Key("0"), "v", payload).size());
+  {
+    CacheFolder cache(dir_, "v", Options());
+    for (int k = 0; k < 4; ++k) cache.Write(Key("future " + std::to_string(k)), payload);
+  }
+  const auto later = fs::file_time_type::clock::now() + std::chrono::hours(24);
+  for (int k = 0; k < 4; ++k) {
+    fs::last_write_time(dir_ / (ToHex(Key("future " + std::to_string(k))) + ".entry"), later);
+  }
+  CacheFolder cache(dir_, "v", Options(4 * entry_bytes));
+  ASSERT_TRUE(cache.Read(Key("future 0")));
+  for (int k = 0; k < 3; ++k) cache.Write(Key("new " + std::to_string(k)), payload);
+  const CacheEviction eviction = cache.Evict();
+  EXPECT_EQ(eviction.removed, 3);
+  EXPECT_EQ(eviction.in_use, 4);
+  EXPECT_FALSE(eviction.over_bound);
+  EXPECT_TRUE(cache.Read(Key("future 0")));
+  for (int k = 0; k < 3; ++k) EXPECT_TRUE(cache.Read(Key("new " + std::to_string(k)))) << k;
+  for (int k = 1; k < 4; ++k) EXPECT_FALSE(cache.Read(Key("future " + std::to_string(k)))) << k;
+}
+
+// A bound below what one job needs keeps the job's entries all the same (its re-run finds them),
+// and says so; the other entries go.
+TEST_F(CacheFolderTest, ABoundBelowOneJobsEntriesKeepsThemAndSaysSo) {
+  const std::string payload(1000, 'x');
+  {
+    CacheFolder cache(dir_, "v", Options());
+    cache.Write(Key("another job's"), payload);
+  }
+  CacheFolder cache(dir_, "v", Options(1));
+  for (int k = 0; k < 5; ++k) cache.Write(Key(std::to_string(k)), payload);
+  const CacheEviction eviction = cache.Evict();
+  EXPECT_EQ(eviction.removed, 1);
+  EXPECT_EQ(eviction.in_use, 5);
+  EXPECT_TRUE(eviction.over_bound);
+  EXPECT_GE(eviction.in_use_bytes,
+            5 * static_cast<std::int64_t>(CacheEntryBytes(Key("0"), "v", payload).size()));
+  for (int k = 0; k < 5; ++k) EXPECT_TRUE(cache.Read(Key(std::to_string(k)))) << k;
+  EXPECT_FALSE(cache.Read(Key("another job's")));
 }
 
 // A cache an older fleetmerge filled (format 1: entries named by 64 hex digits, SHA-256 keys)
@@ -135,7 +182,7 @@ TEST_F(CacheFolderTest, EvictionRemovesTheEntriesOfTheOlderFormat) {
   ft::WriteFile(dir_ / "notes.txt", "a user's file, not an entry");
   CacheFolder cache(dir_, "v", Options());
   cache.Write(Key("new"), "payload");
-  EXPECT_EQ(cache.Evict(), 1);
+  EXPECT_EQ(cache.Evict().removed, 1);
   EXPECT_FALSE(fs::exists(old_entry));
   EXPECT_EQ(cache.Read(Key("new")).value_or("absent"), "payload");
   EXPECT_TRUE(fs::exists(dir_ / "notes.txt"));

@@ -258,6 +258,26 @@ TEST(PairOptionsDigest, ChangesWithEveryRefinementSetting) {
   }
 }
 
+// A bound below one job's pairs keeps them all (the job's re-run takes them from the cache) and
+// reports it, instead of evicting the entries the job just wrote.
+TEST_F(PairCacheTest, ABoundBelowTheJobsPairsKeepsThemAll) {
+  CacheFolderOptions tiny;
+  tiny.max_bytes = 1;
+  PairCacheStats first, again;
+  for (PairCacheStats* stats : {&first, &again}) {
+    PairCache cache(dir_, kVersion, tiny);
+    MergeFleet(FirstMaps(fleet_, 3), 0, options_, {}, &cache);
+    *stats = cache.stats();
+  }
+  EXPECT_EQ(first.pairs_computed, 3);
+  EXPECT_EQ(first.evicted, 0);
+  EXPECT_EQ(first.entries_in_use, 3);
+  EXPECT_TRUE(first.over_bound);
+  EXPECT_EQ(again.pairs_cached, 3);
+  EXPECT_EQ(again.pairs_computed, 0);
+  EXPECT_TRUE(again.over_bound);
+}
+
 TEST_F(PairCacheTest, TheCacheIsReleasedOnceThePairsAreDone) {
   PairCache cache(dir_, kVersion, {});
   const FleetResult result = MergeFleet(FirstMaps(fleet_, 3), 0, options_, {}, &cache);
