@@ -1,5 +1,7 @@
 #include "io/cache_folder.hpp"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <cstring>
 #include <fstream>
@@ -74,6 +76,15 @@ bool IsEntryTempName(const std::string& name) {
   const std::size_t entry = kKeyDigits + std::strlen(kEntryExtension);
   if (name.size() < 1 + entry + 5 || name[0] != '.') return false;
   return IsEntryName(name.substr(1, entry)) && name.compare(1 + entry, 5, ".tmp.") == 0;
+}
+
+// What `path` takes on its file system (its allocated blocks; not followed if a link), 0 when it
+// is gone. A ~330-byte entry takes a whole block (4 KiB on ext4), so file sizes would let the
+// folder grow to ~12 times its bound.
+std::int64_t DiskBytes(const fs::path& path) {
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) != 0) return 0;
+  return static_cast<std::int64_t>(info.st_blocks) * 512;  // st_blocks counts 512-byte units
 }
 
 }  // namespace
@@ -175,7 +186,9 @@ CacheEviction CacheFolder::Evict() {
     std::int64_t bytes;
   };
   std::vector<Entry> entries;
-  std::int64_t total = 0;
+  // The folder's own blocks and its other files (CACHEDIR.TAG, the lock) count too: the bound is
+  // on what the folder takes on disk.
+  std::int64_t total = DiskBytes(dir_);
   CacheEviction eviction;
   int& removed = eviction.removed;
   std::error_code ec;
@@ -190,11 +203,11 @@ CacheEviction CacheFolder::Evict() {
       removed += fs::remove(it->path(), entry_ec) ? 1 : 0;
       continue;
     }
-    if (!IsEntryName(name) || !it->is_regular_file(entry_ec)) continue;
-    const auto bytes = static_cast<std::int64_t>(it->file_size(entry_ec));
+    const std::int64_t bytes = DiskBytes(it->path());
+    total += bytes;
+    if (!IsEntryName(name) || !it->is_regular_file(entry_ec) || it->is_symlink(entry_ec)) continue;
     const fs::file_time_type used = it->last_write_time(entry_ec);
     if (entry_ec) continue;
-    total += bytes;
     if (used_.count(name) != 0) {  // this job's: counted, never a candidate
       ++eviction.in_use;
       eviction.in_use_bytes += bytes;

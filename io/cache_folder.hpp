@@ -38,7 +38,7 @@
 namespace fleetmerge {
 
 struct CacheFolderOptions {
-  std::int64_t max_bytes = std::int64_t(1024) << 20;
+  std::int64_t max_bytes = std::int64_t(1024) << 20;  // on disk (allocated blocks)
   double lock_wait_s = 0.0;  // for another job using the folder (0: fail at once)
   FolderLock::WaitNotice lock_notice;
   std::string job;  // who holds the lock (named to a waiting job)
@@ -75,7 +75,8 @@ class CacheFolder {
   // when it cannot be written. Safe to call from several threads.
   void Write(const ContentDigest& key, const std::string& payload);
   // Removes the least recently used entries (and temporary files of killed jobs, and entries of
-  // the older format 1) until the entries take at most options.max_bytes, but never an entry
+  // the older format 1) until the folder takes at most options.max_bytes on disk (its files'
+  // allocated blocks, the folder's own included), but never an entry
   // this opening read or wrote: when those alone take more, they are all kept (over_bound).
   CacheEviction Evict();
 

@@ -5,6 +5,7 @@
 #include "io/cache_folder.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -31,6 +32,20 @@ bool Contains(const std::string& text, const std::string& part) {
 }
 
 ContentDigest Key(const std::string& name) { return ContentHashOf(name); }
+
+// What `path` takes on disk: its allocated blocks, as du counts them.
+std::int64_t DiskBytes(const fs::path& path) {
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) != 0) return 0;
+  return static_cast<std::int64_t>(info.st_blocks) * 512;
+}
+
+// The folder's own blocks and its files' (it holds no subfolders).
+std::int64_t FolderDiskBytes(const fs::path& dir) {
+  std::int64_t total = DiskBytes(dir);
+  for (const auto& f : fs::directory_iterator(dir)) total += DiskBytes(f.path());
+  return total;
+}
 
 class CacheFolderTest : public ::testing::Test {
  protected:
@@ -96,11 +111,13 @@ TEST_F(CacheFolderTest, BadEntriesAreRejectedAndRemoved) {
 
 TEST_F(CacheFolderTest, EvictsTheLeastRecentlyUsedBeyondTheBound) {
   const std::string payload(1000, 'x');
-  const std::int64_t entry_bytes =
-      static_cast<std::int64_t>(CacheEntryBytes(Key("0"), "v", payload).size());
+  std::int64_t entry_bytes = 0, folder_bytes = 0;  // on disk
   {
     CacheFolder cache(dir_, "v", Options());
     for (int k = 0; k < 6; ++k) cache.Write(Key(std::to_string(k)), payload);
+    ft::WriteFile(dir_ / "notes.txt", "a user's file, not an entry");
+    entry_bytes = DiskBytes(cache.EntryPath(Key("0")));
+    folder_bytes = FolderDiskBytes(dir_);
   }
   // Ages 0 (oldest) .. 5, an hour apart; then entry 0 is read: the most recently used.
   const auto now = fs::file_time_type::clock::now();
@@ -111,8 +128,8 @@ TEST_F(CacheFolderTest, EvictsTheLeastRecentlyUsedBeyondTheBound) {
   // A killed job's temporary file is removed by the eviction too.
   const fs::path temp = dir_ / ("." + ToHex(Key("9")) + ".entry.tmp.1234abcd");
   ft::WriteFile(temp, "half");
-  ft::WriteFile(dir_ / "notes.txt", "a user's file, not an entry");
-  CacheFolder cache(dir_, "v", Options(3 * entry_bytes));
+  // Room for all but three entries (and half of one).
+  CacheFolder cache(dir_, "v", Options(folder_bytes - 3 * entry_bytes + entry_bytes / 2));
   ASSERT_TRUE(cache.Read(Key("0")));
   EXPECT_EQ(cache.Evict().removed, 3);
   EXPECT_TRUE(cache.Read(Key("0")));   // used last
@@ -126,22 +143,38 @@ TEST_F(CacheFolderTest, EvictsTheLeastRecentlyUsedBeyondTheBound) {
   EXPECT_EQ(cache.Evict().removed, 0);
 }
 
+// An entry of ~370 bytes takes a whole block of the file system (4 KiB on ext4): the bound
+// limits the blocks, so that the folder never takes more than its bound on disk.
+TEST_F(CacheFolderTest, TheBoundLimitsWhatTheFolderTakesOnDisk) {
+  const std::int64_t bound = 64 << 10;
+  {
+    CacheFolder cache(dir_, "v", Options());
+    for (int k = 0; k < 40; ++k) cache.Write(Key(std::to_string(k)), std::string(300, 'x'));
+  }
+  CacheFolder cache(dir_, "v", Options(bound));
+  EXPECT_GT(cache.Evict().removed, 0);
+  EXPECT_LE(FolderDiskBytes(dir_), bound);
+  int left = 0;
+  for (int k = 0; k < 40; ++k) left += cache.Read(Key(std::to_string(k))).has_value();
+  EXPECT_GT(left, 0);
+}
+
 // Entries whose times lie in the future (a clock that was ahead, a cache copied with its times)
 // look more recently used than the ones this job just wrote; the job's own are kept anyway and
 // the others go.
 TEST_F(CacheFolderTest, EvictionNeverRemovesTheEntriesThisOpeningUsed) {
   const std::string payload(1000, 'x');
-  const std::int64_t entry_bytes =
-      static_cast<std::int64_t>(CacheEntryBytes(Key("0"), "v", payload).size());
+  std::int64_t folder_bytes = 0;  // with four entries, on disk
   {
     CacheFolder cache(dir_, "v", Options());
     for (int k = 0; k < 4; ++k) cache.Write(Key("future " + std::to_string(k)), payload);
+    folder_bytes = FolderDiskBytes(dir_);
   }
   const auto later = fs::file_time_type::clock::now() + std::chrono::hours(24);
   for (int k = 0; k < 4; ++k) {
     fs::last_write_time(dir_ / (ToHex(Key("future " + std::to_string(k))) + ".entry"), later);
   }
-  CacheFolder cache(dir_, "v", Options(4 * entry_bytes));
+  CacheFolder cache(dir_, "v", Options(folder_bytes));  // room for four entries
   ASSERT_TRUE(cache.Read(Key("future 0")));
   for (int k = 0; k < 3; ++k) cache.Write(Key("new " + std::to_string(k)), payload);
   const CacheEviction eviction = cache.Evict();
