@@ -1,8 +1,11 @@
 #include "io/cache_folder.hpp"
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -22,6 +25,10 @@ constexpr char kMagic[16] = {'f', 'l', 'e', 'e', 't', 'm', 'e', 'r',
 constexpr std::uint32_t kByteOrderMark = 0x01020304;
 constexpr const char* kEntryExtension = ".entry";
 // Tells backup and archiving tools that the folder holds a cache (https://bford.info/cachedir/).
+constexpr const char* kCacheDirTagName = "CACHEDIR.TAG";
+constexpr const char* kCacheDirSignature = "Signature: 8a477f597d28d172789f06886806bc55\n";
+// The tag's second line marks the folder as fleetmerge's (every fleetmerge wrote it).
+constexpr const char* kCacheDirTagMark = "# This file marks a fleetmerge cache folder";
 constexpr const char* kCacheDirTag =
     "Signature: 8a477f597d28d172789f06886806bc55\n"
     "# This file marks a fleetmerge cache folder (fleetmerge merge --cache): re-runs reuse its\n"
@@ -87,6 +94,78 @@ std::int64_t DiskBytes(const fs::path& path) {
   return static_cast<std::int64_t>(info.st_blocks) * 512;  // st_blocks counts 512-byte units
 }
 
+// Up to `limit` bytes of `path` when it is a regular file (not followed if a link; a FIFO is
+// never opened, so never waited on), nullopt otherwise or when it cannot be read.
+std::optional<std::string> ReadRegularFile(const fs::path& path, std::size_t limit) {
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode)) return std::nullopt;
+  // O_NONBLOCK: should a FIFO take the file's place after the check, open does not wait for a
+  // writer (and fstat then refuses it).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  std::optional<std::string> bytes;
+  if (::fstat(fd, &info) == 0 && S_ISREG(info.st_mode)) {
+    bytes.emplace();
+    char buffer[1 << 16];
+    while (bytes->size() < limit) {
+      const ssize_t n = ::read(fd, buffer, std::min(sizeof buffer, limit - bytes->size()));
+      if (n == 0) break;
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        bytes.reset();
+        break;
+      }
+      bytes->append(buffer, static_cast<std::size_t>(n));
+    }
+  }
+  ::close(fd);
+  return bytes;
+}
+
+bool IsFleetmergeCache(const fs::path& dir) {
+  const std::optional<std::string> tag = ReadRegularFile(dir / kCacheDirTagName, 4096);
+  return tag && tag->rfind(kCacheDirSignature, 0) == 0 &&
+         tag->find(kCacheDirTagMark) != std::string::npos;
+}
+
+// Throws unless `dir` (an existing folder) may become a cache: it is empty or a fleetmerge
+// cache. Anything else is someone's files, which the CACHEDIR.TAG written next would hide from
+// backups made with --exclude-caches (and which the eviction would sit beside).
+void CheckEmptyOrCache(const fs::path& dir, const std::string& shown) {
+  if (IsFleetmergeCache(dir)) return;
+  const std::string tag_temp = std::string(".") + kCacheDirTagName + ".tmp.";
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    // A job creating this cache at this moment: its tag is being written.
+    if (name.rfind(tag_temp, 0) == 0) continue;
+    throw Error("cache folder " + shown +
+                " is not empty and is not a fleetmerge cache (it holds '" + name +
+                "' and no CACHEDIR.TAG written by fleetmerge); give a new or empty folder, " +
+                "or a fleetmerge cache folder (fleetmerge marks its cache with CACHEDIR.TAG, " +
+                "which makes backup tools skip the whole folder)");
+  }
+  if (ec) throw Error("cache folder " + shown + ": cannot list it: " + ec.message());
+}
+
+// Throws when one of `inputs` lies inside `dir` (checked through links).
+void CheckHoldsNoInput(const fs::path& dir, const std::string& shown,
+                       const std::vector<fs::path>& inputs) {
+  std::error_code ec;
+  const fs::path folder = fs::weakly_canonical(dir, ec);
+  if (ec) return;
+  for (const fs::path& input : inputs) {
+    if (input.empty()) continue;
+    const fs::path file = fs::weakly_canonical(input, ec);
+    if (ec) continue;
+    const fs::path relative = file.lexically_relative(folder);
+    if (relative.empty() || *relative.begin() == "..") continue;
+    throw Error("cache folder " + shown + " holds the job's input file " + input.string() +
+                "; the cache folder is fleetmerge's (CACHEDIR.TAG makes backup tools skip it): " +
+                "give the cache a folder of its own");
+  }
+}
+
 }  // namespace
 
 std::string CacheEntryBytes(const ContentDigest& key, const std::string& version,
@@ -110,6 +189,8 @@ CacheFolder::CacheFolder(const fs::path& dir, const std::string& version,
   if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec)) {
     throw Error("cache folder " + dir_.string() + " exists and is not a folder");
   }
+  if (fs::is_directory(dir_, ec)) CheckEmptyOrCache(dir_, dir_.string());
+  CheckHoldsNoInput(dir_, dir_.string(), options.inputs);
   // The lock file lives beside the folder: its parent must exist first.
   const fs::path parent = fs::absolute(dir_, ec).lexically_normal().parent_path();
   fs::create_directories(parent, ec);
@@ -123,7 +204,7 @@ CacheFolder::CacheFolder(const fs::path& dir, const std::string& version,
   // Written (atomically) at every opening: that also proves the folder writable now, rather
   // than after a job's worth of pairs.
   try {
-    WriteFileAtomically(dir_ / "CACHEDIR.TAG", kCacheDirTag);
+    WriteFileAtomically(dir_ / kCacheDirTagName, kCacheDirTag);
   } catch (const Error& e) {
     throw Error("cache folder " + dir_.string() + " is not writable: " + e.what());
   }

@@ -31,6 +31,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "io/content_hash.hpp"
 #include "io/folder_lock.hpp"
@@ -42,6 +43,8 @@ struct CacheFolderOptions {
   double lock_wait_s = 0.0;  // for another job using the folder (0: fail at once)
   FolderLock::WaitNotice lock_notice;
   std::string job;  // who holds the lock (named to a waiting job)
+  // The job's input files (maps, job file): none may lie inside the folder.
+  std::vector<std::filesystem::path> inputs;
 };
 
 // What an eviction did.
@@ -58,8 +61,9 @@ class CacheFolder {
 
   // Creates `dir` (and its parents) if needed and locks it. Entries are valid only for
   // `version` (fleetmerge's): others are never trusted. Throws fleetmerge::Error naming `dir`
-  // when it is not a folder, cannot be created, or is not writable, or when another job holds
-  // it beyond options.lock_wait_s.
+  // when it is not a folder, is a folder neither empty nor a fleetmerge cache (marked by its
+  // CACHEDIR.TAG), holds one of options.inputs, cannot be created, or is not writable, or when
+  // another job holds it beyond options.lock_wait_s.
   CacheFolder(const std::filesystem::path& dir, const std::string& version,
               const CacheFolderOptions& options);
   CacheFolder(const CacheFolder&) = delete;

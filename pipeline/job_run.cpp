@@ -212,6 +212,8 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
       cache_options.lock_wait_s = options.lock_wait_s;
       cache_options.lock_notice = options.cache_lock_notice;
       cache_options.job = JobIdentity(job);
+      cache_options.inputs = protect;
+      for (const JobMap& map : job.maps) cache_options.inputs.push_back(map.path);  // bags, octrees
       cache.emplace(job.options.cache_dir, FLEETMERGE_VERSION_STRING, cache_options);
     }
     FleetOptions fleet_options = job.options;

@@ -129,6 +129,19 @@ TEST_F(MergeCacheCliTest, ACacheFolderThatIsAFileFailsTheJobNamingIt) {
   EXPECT_FALSE(fs::exists(dir_ / "out" / "report.json"));
 }
 
+// `--cache` naming the folder of the job's maps: refused before anything is written there (a
+// CACHEDIR.TAG would make backups skip the maps).
+TEST_F(MergeCacheCliTest, AFolderOfMapsIsNotMadeACache) {
+  const fs::path maps = dir_ / "ex";
+  const auto run = Merge(dir_ / "out", "--cache " + ShellQuote(maps));
+  EXPECT_EQ(run.exit_code, 1) << run.both();
+  EXPECT_TRUE(Contains(
+      run.err, "cache folder " + maps.string() + " is not empty and is not a fleetmerge cache"))
+      << run.err;
+  EXPECT_FALSE(fs::exists(maps / "CACHEDIR.TAG"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "report.json"));
+}
+
 TEST_F(MergeCacheCliTest, ASizeBoundWithoutACacheIsAnError) {
   const auto run = Merge(dir_ / "out", "--cache-max-mb 64");
   EXPECT_EQ(run.exit_code, 1) << run.both();

@@ -238,6 +238,43 @@ TEST_F(CacheFolderTest, AFolderUnderAFileIsAnErrorNamingIt) {
   EXPECT_TRUE(Contains(error, "cache folder " + under.string())) << error;
 }
 
+// A folder of someone's files (say the job's maps) is not made a cache: its CACHEDIR.TAG would
+// make backups made with --exclude-caches skip those files. An empty folder and a fleetmerge cache
+// are taken.
+TEST_F(CacheFolderTest, ANonEmptyFolderThatIsNoCacheIsRefused) {
+  fs::create_directories(dir_);
+  ft::WriteFile(dir_ / "robot1.yaml", "image: robot1.pgm");
+  const std::string error = ErrorOf([&] { CacheFolder cache(dir_, "v", Options()); });
+  EXPECT_TRUE(Contains(error, "cache folder " + dir_.string() +
+                                  " is not empty and is not a fleetmerge cache (it holds "
+                                  "'robot1.yaml'"))
+      << error;
+  EXPECT_TRUE(Contains(error, "give a new or empty folder, or a fleetmerge cache folder")) << error;
+  EXPECT_FALSE(fs::exists(dir_ / "CACHEDIR.TAG"));
+  // Another program's cache (its own CACHEDIR.TAG) is not fleetmerge's either.
+  ft::WriteFile(dir_ / "CACHEDIR.TAG", "Signature: 8a477f597d28d172789f06886806bc55\n");
+  EXPECT_TRUE(Contains(ErrorOf([&] { CacheFolder cache(dir_, "v", Options()); }),
+                       "is not a fleetmerge cache"));
+  const fs::path empty = dir_.parent_path() / "empty";
+  fs::create_directories(empty);
+  { CacheFolder cache(empty, "v", Options()); }
+  ft::WriteFile(empty / "notes.txt", "a user's note in a fleetmerge cache");
+  CacheFolder cache(empty, "v", Options());  // now a fleetmerge cache
+  EXPECT_TRUE(fs::exists(empty / "CACHEDIR.TAG"));
+}
+
+TEST_F(CacheFolderTest, AFolderHoldingAnInputIsRefused) {
+  { CacheFolder cache(dir_, "v", Options()); }
+  fs::create_directories(dir_ / "maps");
+  ft::WriteFile(dir_ / "maps" / "robot1.pgm", "P5 1 1 255 x");
+  CacheFolderOptions options = Options();
+  options.inputs = {dir_.parent_path() / "job.yaml", dir_ / "maps" / ".." / "maps" / "robot1.pgm"};
+  const std::string error = ErrorOf([&] { CacheFolder cache(dir_, "v", options); });
+  EXPECT_TRUE(Contains(error, "cache folder " + dir_.string() + " holds the job's input file " +
+                                  options.inputs[1].string()))
+      << error;
+}
+
 TEST_F(CacheFolderTest, AnUnwritableFolderIsAnErrorNamingIt) {
   fs::create_directories(dir_);
   fs::permissions(dir_, fs::perms::owner_read | fs::perms::owner_exec);
