@@ -7,8 +7,6 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <tuple>
 #include <vector>
 
@@ -66,6 +64,9 @@ std::optional<std::string> ParseEntry(const std::string& bytes, const ContentDig
 }
 
 constexpr std::size_t kKeyDigits = 2 * sizeof(ContentDigest);
+// Entries hold a pair's few hypotheses (~330 bytes): a file beyond this is no entry, and is not
+// read whole into memory.
+constexpr std::size_t kLargestEntryBytes = std::size_t(1) << 24;
 // Format 1 named its entries by 64 hex digits (SHA-256 keys): no reader finds them any more.
 constexpr std::size_t kFormat1KeyDigits = 64;
 
@@ -223,14 +224,17 @@ void CacheFolder::CheckLocked() const {
 std::optional<std::string> CacheFolder::Read(const ContentDigest& key) {
   CheckLocked();
   const fs::path path = EntryPath(key);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;  // absent (or unreadable: rewritten below by the caller)
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::optional<std::string> payload = in.bad() ? std::nullopt : ParseEntry(bytes, key, version_);
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) != 0) return std::nullopt;  // absent
+  // A folder, FIFO, link or anything else at the entry's name, and a file that cannot be read,
+  // is a bad entry like a corrupt one: the job goes on without it (a FIFO is never opened: it
+  // would wait for a writer forever, holding the cache's lock).
+  const std::optional<std::string> bytes = ReadRegularFile(path, kLargestEntryBytes);
+  std::optional<std::string> payload = bytes ? ParseEntry(*bytes, key, version_) : std::nullopt;
   std::error_code ec;
   if (!payload) {
     ++rejected_;
-    fs::remove(path, ec);
+    fs::remove(path, ec);  // a file, link, FIFO or empty folder (never what a folder holds)
     return std::nullopt;
   }
   // Used now: the last to be evicted by later jobs (a failure only makes it look older to them).

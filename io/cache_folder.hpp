@@ -12,8 +12,10 @@
 //   16 bytes                       the content hash of all the bytes above
 //
 // An entry is trusted only when all of that checks out: a truncated, corrupt or foreign file
-// (another key's entry under this name, another version's, another byte order's) is counted,
-// removed and reported as absent, so its caller computes it again and writes it anew.
+// (another key's entry under this name, another version's, another byte order's), a file that
+// cannot be read, and anything at an entry's name that is not a regular file (a folder, a FIFO,
+// a link) is counted, removed and reported as absent, so its caller computes it again and
+// writes it anew: no entry can fail or stall a job.
 //
 // One job at a time: the folder is locked (io/folder_lock.hpp, label "cache folder") from the
 // constructor to Unlock (or the destructor). A second job sharing the cache waits for the first and

@@ -2,6 +2,7 @@
 // from the cache (printed, and in report.json) with the same result; a cache folder that is a
 // file fails the job naming it; a cache entry of garbage is rebuilt.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -182,6 +183,33 @@ TEST_F(MergeCacheCliTest, AGarbageEntryIsRebuilt) {
   EXPECT_EQ(report["cache"]["entries_rejected"], 1);
   const auto again = Merge(dir_ / "out", "--cache " + ShellQuote(cache));
   EXPECT_TRUE(Contains(again.out, "pairs: 1 from the cache, 0 computed")) << again.out;
+}
+
+// A folder or a FIFO in an entry's place is a bad entry like garbage: the job succeeds (before,
+// a folder failed it with "basic_filebuf::underflow error reading the file: Is a directory" and a
+// FIFO made it wait forever holding the cache's lock).
+TEST_F(MergeCacheCliTest, AFolderOrAFifoInAnEntrysPlaceIsRebuilt) {
+  const fs::path cache = dir_ / "cache";
+  ASSERT_EQ(Merge(dir_ / "out", "--cache " + ShellQuote(cache)).exit_code, 0);
+  fs::path entry;
+  for (const auto& f : fs::directory_iterator(cache)) {
+    if (f.path().extension() == ".entry") entry = f.path();
+  }
+  ASSERT_FALSE(entry.empty());
+  for (const std::string what : {"folder", "fifo"}) {
+    fs::remove(entry);
+    if (what == "folder") {
+      fs::create_directory(entry);
+    } else {
+      ASSERT_EQ(::mkfifo(entry.c_str(), 0644), 0);
+    }
+    const auto rebuilt = Merge(dir_ / "out", "--cache " + ShellQuote(cache));
+    ASSERT_EQ(rebuilt.exit_code, 0) << what << ": " << rebuilt.both();
+    EXPECT_TRUE(
+        Contains(rebuilt.out, "pairs: 0 from the cache, 1 computed; 1 bad cache entries rebuilt"))
+        << what << ": " << rebuilt.out;
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(entry))) << what;
+  }
 }
 
 }  // namespace

@@ -109,6 +109,37 @@ TEST_F(CacheFolderTest, BadEntriesAreRejectedAndRemoved) {
   EXPECT_EQ(cache.Read(Key("k")).value_or(""), payload);
 }
 
+// Only a regular file can be an entry: a folder (which made ifstream fail with "Is a directory",
+// naming no file), a FIFO (which made the job wait forever, holding the lock) or a link is a bad
+// entry, counted and removed, never opened; the entry is then written anew.
+TEST_F(CacheFolderTest, AnythingButARegularFileIsABadEntry) {
+  CacheFolder cache(dir_, "v", Options());
+  const fs::path elsewhere = dir_.parent_path() / "elsewhere.entry";
+  ft::WriteFile(elsewhere, CacheEntryBytes(Key("k"), "v", "payload"));
+  const std::vector<std::pair<std::string, std::function<void(const fs::path&)>>> makers = {
+      {"an empty folder", [](const fs::path& p) { fs::create_directory(p); }},
+      {"a FIFO", [](const fs::path& p) { ASSERT_EQ(::mkfifo(p.c_str(), 0644), 0); }},
+      {"a link to a sound entry", [&](const fs::path& p) { fs::create_symlink(elsewhere, p); }},
+      {"a dangling link", [&](const fs::path& p) { fs::create_symlink(dir_ / "gone", p); }}};
+  int rejected = 0;
+  for (const auto& [what, make] : makers) {
+    const fs::path path = cache.EntryPath(Key("k"));
+    make(path);
+    EXPECT_FALSE(cache.Read(Key("k"))) << what;
+    EXPECT_EQ(cache.rejected(), ++rejected) << what;
+    EXPECT_FALSE(fs::exists(fs::symlink_status(path))) << what << " is removed";
+    cache.Write(Key("k"), "payload");
+    EXPECT_EQ(cache.Read(Key("k")).value_or("absent"), "payload") << what;
+    fs::remove(path);
+  }
+  EXPECT_EQ(ft::ReadFile(elsewhere), CacheEntryBytes(Key("k"), "v", "payload"));  // untouched
+  // A folder with files in it is not emptied (not fleetmerge's to delete); the job goes on.
+  fs::create_directories(cache.EntryPath(Key("k")) / "inside");
+  EXPECT_FALSE(cache.Read(Key("k")));
+  EXPECT_EQ(cache.rejected(), ++rejected);
+  EXPECT_TRUE(fs::exists(cache.EntryPath(Key("k")) / "inside"));
+}
+
 TEST_F(CacheFolderTest, EvictsTheLeastRecentlyUsedBeyondTheBound) {
   const std::string payload(1000, 'x');
   std::int64_t entry_bytes = 0, folder_bytes = 0;  // on disk
