@@ -185,29 +185,33 @@ std::string CacheEntryBytes(const ContentDigest& key, const std::string& version
 
 CacheFolder::CacheFolder(const fs::path& dir, const std::string& version,
                          const CacheFolderOptions& options)
-    : dir_(dir), version_(version), max_bytes_(options.max_bytes) {
+    // One folder, one lock, however it is spelled (a link to the folder included).
+    : dir_(ResolvedFolder(dir)),
+      shown_(dir.string()),
+      version_(version),
+      max_bytes_(options.max_bytes) {
   std::error_code ec;
   if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec)) {
-    throw Error("cache folder " + dir_.string() + " exists and is not a folder");
+    throw Error("cache folder " + shown_ + " exists and is not a folder");
   }
-  if (fs::is_directory(dir_, ec)) CheckEmptyOrCache(dir_, dir_.string());
-  CheckHoldsNoInput(dir_, dir_.string(), options.inputs);
+  if (fs::is_directory(dir_, ec)) CheckEmptyOrCache(dir_, shown_);
+  CheckHoldsNoInput(dir_, shown_, options.inputs);
   // The lock file lives beside the folder: its parent must exist first.
   const fs::path parent = fs::absolute(dir_, ec).lexically_normal().parent_path();
   fs::create_directories(parent, ec);
   if (ec) {
-    throw Error("cache folder " + dir_.string() + ": cannot create " + parent.string() + ": " +
+    throw Error("cache folder " + shown_ + ": cannot create " + parent.string() + ": " +
                 ec.message());
   }
   lock_.emplace(dir_, options.job, options.lock_wait_s, "cache folder", options.lock_notice);
   fs::create_directories(dir_, ec);
-  if (ec) throw Error("cache folder " + dir_.string() + ": cannot create it: " + ec.message());
+  if (ec) throw Error("cache folder " + shown_ + ": cannot create it: " + ec.message());
   // Written (atomically) at every opening: that also proves the folder writable now, rather
   // than after a job's worth of pairs.
   try {
     WriteFileAtomically(dir_ / kCacheDirTagName, kCacheDirTag);
   } catch (const Error& e) {
-    throw Error("cache folder " + dir_.string() + " is not writable: " + e.what());
+    throw Error("cache folder " + shown_ + " is not writable: " + e.what());
   }
 }
 

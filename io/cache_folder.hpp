@@ -91,13 +91,14 @@ class CacheFolder {
   void Unlock();
 
   std::filesystem::path EntryPath(const ContentDigest& key) const;
-  const std::filesystem::path& dir() const { return dir_; }
+  const std::filesystem::path& dir() const { return dir_; }  // links resolved
   int rejected() const { return rejected_; }
 
  private:
   void CheckLocked() const;
   void MarkUsed(const ContentDigest& key);
-  std::filesystem::path dir_;
+  std::filesystem::path dir_;  // links resolved (ResolvedFolder)
+  std::string shown_;          // as the caller named it, for messages
   std::string version_;
   std::int64_t max_bytes_;
   std::optional<FolderLock> lock_;

@@ -35,7 +35,13 @@ struct FolderLockHolder {
 // holds it ("out/" and "./out" are one folder).
 std::filesystem::path NormalisedFolder(const std::filesystem::path& folder);
 
-// `.<name>.fleetmerge-lock` beside `folder` (absolute, normalised: "out/" and "./out" share it).
+// The folder `folder` names, as NormalisedFolder, with every link followed (in its parents and in
+// its own name, even when the link's target does not exist yet): one folder has one lock however
+// it is spelled ("cache" and "link_to_cache" are one folder).
+std::filesystem::path ResolvedFolder(const std::filesystem::path& folder);
+
+// `.<name>.fleetmerge-lock` beside the folder `folder` resolves to (ResolvedFolder: "out/",
+// "./out" and a link to out share it).
 std::filesystem::path FolderLockPath(const std::filesystem::path& folder);
 
 // The holder recorded in a lock file's text; nullopt unless it is well formed (the file may be
@@ -48,8 +54,9 @@ class FolderLock {
   // is busy and the caller is about to wait for it.
   using WaitNotice = std::function<void(const std::string& holder)>;
 
-  // Locks `folder` (which need not exist; the folder holding it must) for `job`, waiting up to
-  // `wait_s` seconds for another holder to finish (0: not at all). Throws fleetmerge::Error
+  // Locks `folder` (ResolvedFolder; it need not exist, the folder holding it must) for `job`,
+  // waiting up to `wait_s` seconds for another holder to finish (0: not at all). Throws
+  // fleetmerge::Error
   // "<label> X is in use by job J (pid P on HOST, since T); ..." when the wait runs out, or
   // naming the lock file when it cannot be opened or locked.
   FolderLock(const std::filesystem::path& folder, const std::string& job, double wait_s,

@@ -187,7 +187,8 @@ ResultManifest ReadResultManifest(const fs::path& folder) {
 ResultFolder::ResultFolder(fs::path output_dir, std::string job_id, bool force,
                            const std::vector<fs::path>& inputs, double lock_wait_s,
                            const FolderLock::WaitNotice& notice)
-    : output_dir_(NormalisedFolder(output_dir)), job_id_(std::move(job_id)) {
+    // A link to a folder is kept: the set replaces the folder it points to.
+    : output_dir_(ResolvedFolder(output_dir)), job_id_(std::move(job_id)) {
   std::replace(job_id_.begin(), job_id_.end(), '\n', ' ');  // the manifest is line-based
   std::error_code ec;
   fs::create_directories(output_dir_.parent_path(), ec);

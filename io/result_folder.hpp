@@ -18,6 +18,9 @@
 //   - it holds none of the job's inputs (neither map files nor the job file), and
 //   - its manifest names the same job, or `force` is set.
 //
+// An output folder named through a link (`--out link` where link points to a folder) is the
+// link's target: the set replaces the target (staged beside it), and the link stays.
+//
 // One job at a time: a ResultFolder holds the output folder's lock (io/folder_lock.hpp) from
 // before it looks at the folder until it is destroyed (after Publish, or when the job is
 // abandoned). A second job writing the same folder waits for the first to finish (up to

@@ -318,6 +318,16 @@ TEST_F(CacheFolderTest, AnUnwritableFolderIsAnErrorNamingIt) {
   EXPECT_TRUE(Contains(error, "cache folder " + dir_.string() + " is not writable")) << error;
 }
 
+// `--cache real` and `--cache link` (link -> real) are one cache: the second waits for the first.
+TEST_F(CacheFolderTest, ALinkToTheFolderIsTheSameCache) {
+  fs::create_directories(dir_);
+  const fs::path link = dir_.parent_path() / "link";
+  fs::create_directory_symlink(dir_, link);
+  CacheFolder first(dir_, "v", Options());
+  const std::string error = ErrorOf([&] { CacheFolder second(link, "v", Options()); });
+  EXPECT_TRUE(Contains(error, "is in use by test job")) << error;
+}
+
 TEST_F(CacheFolderTest, ASecondJobWaitsForTheLockOrFailsNamingTheHolder) {
   std::optional<CacheFolder> first;
   first.emplace(dir_, "v", Options());
