@@ -138,8 +138,11 @@ void CheckEmptyOrCache(const fs::path& dir, const std::string& shown) {
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    // A job creating this cache at this moment: its tag is being written.
-    if (name.rfind(tag_temp, 0) == 0) continue;
+    // A job creating this cache at this moment: its lock, its tag being written.
+    if (name == FolderLockPath(dir, LockFilePlace::kInsideFolder).filename() ||
+        name.rfind(tag_temp, 0) == 0) {
+      continue;
+    }
     throw Error("cache folder " + shown +
                 " is not empty and is not a fleetmerge cache (it holds '" + name +
                 "' and no CACHEDIR.TAG written by fleetmerge); give a new or empty folder, " +
@@ -196,16 +199,15 @@ CacheFolder::CacheFolder(const fs::path& dir, const std::string& version,
   }
   if (fs::is_directory(dir_, ec)) CheckEmptyOrCache(dir_, shown_);
   CheckHoldsNoInput(dir_, shown_, options.inputs);
-  // The lock file lives beside the folder: its parent must exist first.
-  const fs::path parent = fs::absolute(dir_, ec).lexically_normal().parent_path();
-  fs::create_directories(parent, ec);
-  if (ec) {
-    throw Error("cache folder " + shown_ + ": cannot create " + parent.string() + ": " +
-                ec.message());
-  }
-  lock_.emplace(dir_, options.job, options.lock_wait_s, "cache folder", options.lock_notice);
+  // The lock file lives inside the folder (the folder is fleetmerge's; its parent may be
+  // another user's), so the folder is made first.
   fs::create_directories(dir_, ec);
   if (ec) throw Error("cache folder " + shown_ + ": cannot create it: " + ec.message());
+  if (::access(dir_.c_str(), W_OK | X_OK) != 0) {
+    throw Error("cache folder " + shown_ + " is not writable: " + std::strerror(errno));
+  }
+  lock_.emplace(dir_, options.job, options.lock_wait_s, "cache folder", options.lock_notice,
+                LockFilePlace::kInsideFolder);
   // Written (atomically) at every opening: that also proves the folder writable now, rather
   // than after a job's worth of pairs.
   try {

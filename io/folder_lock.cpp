@@ -114,8 +114,9 @@ fs::path ResolvedFolder(const fs::path& folder) {
   return path;
 }
 
-fs::path FolderLockPath(const fs::path& folder) {
+fs::path FolderLockPath(const fs::path& folder, LockFilePlace place) {
   const fs::path path = ResolvedFolder(folder);
+  if (place == LockFilePlace::kInsideFolder) return path / kLockTag;
   return path.parent_path() / ("." + path.filename().string() + kLockTag);
 }
 
@@ -152,8 +153,8 @@ std::optional<FolderLockHolder> ParseFolderLockFile(const std::string& text) {
 }
 
 FolderLock::FolderLock(const fs::path& folder, const std::string& job, double wait_s,
-                       const std::string& label, const WaitNotice& notice)
-    : path_(FolderLockPath(folder)) {
+                       const std::string& label, const WaitNotice& notice, LockFilePlace place)
+    : path_(FolderLockPath(folder, place)) {
   const std::string folder_name = NormalisedFolder(folder).string();  // as the caller spells it
   const double bounded_wait_s = wait_s > 0 ? std::min(wait_s, kLongestWaitS) : 0.0;  // NaN: 0
   const auto deadline = std::chrono::steady_clock::now() +

@@ -328,6 +328,28 @@ TEST_F(CacheFolderTest, ALinkToTheFolderIsTheSameCache) {
   EXPECT_TRUE(Contains(error, "is in use by test job")) << error;
 }
 
+// The cache's lock file is inside the folder, so a cache whose parent only root may write
+// (/var/cache/fleetmerge of a service user) works.
+TEST_F(CacheFolderTest, TheLockLivesInsideTheFolder) {
+  {
+    CacheFolder cache(dir_, "v", Options());
+    EXPECT_TRUE(fs::exists(dir_ / ".fleetmerge-lock"));
+    EXPECT_FALSE(fs::exists(dir_.parent_path() / ".cache.fleetmerge-lock"));
+  }
+  EXPECT_FALSE(fs::exists(dir_ / ".fleetmerge-lock"));  // removed on release
+}
+
+TEST_F(CacheFolderTest, AFolderWhoseParentIsReadOnlyIsUsable) {
+  { CacheFolder cache(dir_, "v", Options()); }
+  fs::permissions(dir_.parent_path(), fs::perms::owner_read | fs::perms::owner_exec);
+  const bool privileged = ::access(dir_.parent_path().c_str(), W_OK) == 0;
+  std::string error;
+  if (!privileged) error = ErrorOf([&] { CacheFolder cache(dir_, "v", Options()); });
+  fs::permissions(dir_.parent_path(), fs::perms::owner_all);
+  if (privileged) GTEST_SKIP() << "running with privileges that write any folder (root)";
+  EXPECT_EQ(error, "");
+}
+
 TEST_F(CacheFolderTest, ASecondJobWaitsForTheLockOrFailsNamingTheHolder) {
   std::optional<CacheFolder> first;
   first.emplace(dir_, "v", Options());
