@@ -112,10 +112,12 @@ void ReadOptions(const YamlMapping& job, FleetOptions& options, const YamlErrors
   if (auto f = job.Find("refine")) options.pair.refine = ReadBool(*f, errors);
   if (auto f = job.Find("hough")) ReadHough(*f, hypotheses, errors);
   if (auto f = job.Find("translation")) ReadTranslation(*f, hypotheses, errors);
-  if (auto f = job.Find("seed")) {  // as on the command line: Hough seed, spectra seed + 1
-    const auto seed = static_cast<std::uint32_t>(ReadInteger(*f, 0, UINT32_MAX, errors));
+  {  // as on the command line (default 0): Hough seed, spectra seed + 1
+    const auto f = job.Find("seed");
+    const auto seed =
+        f ? static_cast<std::uint32_t>(ReadInteger(*f, 0, UINT32_MAX, errors)) : std::uint32_t(0);
     hypotheses.hough_sampling.seed = seed;
-    hypotheses.spectra_sampling.seed = seed + 1;
+    hypotheses.spectra_sampling.seed = seed + 1;  // also after a `sampling` spec (seed 0)
   }
   if (auto f = job.Find("pose_graph")) ReadPoseGraph(*f, options.pose_graph, errors);
   if (auto f = job.Find("octree")) ReadOctreeOptions(*f, options.octree, errors);

@@ -6,7 +6,8 @@
 // A pair's entry is keyed by the content hash (io/content_hash.hpp) of
 //   - both maps' contents as the pair search sees them (MapDigest: size, resolution, origin and
 //     every cell, after resampling to the job's resolution), in the pair's order (a before b),
-//   - every PairOptions field (PairOptionsDigest; MergeFleet copies min_overlap_cells in), and
+//   - every PairOptions field that can change a pair's hypotheses (PairOptionsDigest; MergeFleet
+//     copies min_overlap_cells in; a sampling seed only with random sampling), and
 //   - fleetmerge's version (a new version may compute other hypotheses).
 // What the entry holds is exactly what ComputeAllPairs returns for the pair (doubles as their
 // bytes), so a merge with the cache is the merge without it, bit for bit.

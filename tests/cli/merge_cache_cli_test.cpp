@@ -92,6 +92,19 @@ TEST_F(MergeCacheCliTest, AJobFilesCacheIsRelativeToItAndTheFlagOverridesIt) {
   EXPECT_TRUE(fs::is_directory(other));
 }
 
+// A job file without `seed:` and `merge --out` of the same maps share their pairs.
+TEST_F(MergeCacheCliTest, AJobFileAndAMapListShareTheirPairs) {
+  const fs::path cache = dir_ / "cache";
+  WriteFile(dir_ / "job.yaml",
+            "maps: [ex/robot_a.yaml, ex/robot_b.yaml]\noutput: job_out\ncache: cache\n");
+  const auto job = Fleetmerge("merge --quiet " + ShellQuote(dir_ / "job.yaml"));
+  ASSERT_EQ(job.exit_code, 0) << job.both();
+  EXPECT_TRUE(Contains(job.out, "pairs: 0 from the cache, 1 computed")) << job.out;
+  const auto list = Merge(dir_ / "list_out", "--cache " + ShellQuote(cache));
+  ASSERT_EQ(list.exit_code, 0) << list.both();
+  EXPECT_TRUE(Contains(list.out, "pairs: 1 from the cache, 0 computed")) << list.out;
+}
+
 TEST_F(MergeCacheCliTest, TwoJobsSharingACacheAtOnceTakeTurns) {
   // Two merges into different folders started together: the second waits for the cache's lock,
   // then finds the first's pair. Either way exactly one of them computes it.

@@ -241,6 +241,25 @@ TEST_F(PairCacheTest, PairOptionsThatChangeHypothesesMissTheCache) {
   EXPECT_EQ(decisions.pairs_cached, 3);
 }
 
+// The seed picks the points of random sampling and nothing else: with every point (the default)
+// or every k-th, jobs of different seeds (a job file's and the command line's) share entries.
+TEST(PairOptionsDigest, TheSeedCountsOnlyForRandomSampling) {
+  for (SamplingOptions HypothesisOptions::*sampling :
+       {&HypothesisOptions::hough_sampling, &HypothesisOptions::spectra_sampling}) {
+    const auto digest = [&](SamplingMode mode, std::uint32_t seed) {
+      PairOptions o;
+      (o.hypotheses.*sampling).mode = mode;
+      (o.hypotheses.*sampling).fraction = 0.5;
+      (o.hypotheses.*sampling).step = 2;
+      (o.hypotheses.*sampling).seed = seed;
+      return PairOptionsDigest(o, kVersion);
+    };
+    EXPECT_EQ(digest(SamplingMode::kAll, 0), digest(SamplingMode::kAll, 7));
+    EXPECT_EQ(digest(SamplingMode::kEveryKth, 0), digest(SamplingMode::kEveryKth, 7));
+    EXPECT_NE(digest(SamplingMode::kRandomFraction, 0), digest(SamplingMode::kRandomFraction, 7));
+  }
+}
+
 TEST(PairOptionsDigest, ChangesWithEveryRefinementSetting) {
   const PairOptions defaults;
   const ContentDigest digest = PairOptionsDigest(defaults, kVersion);
