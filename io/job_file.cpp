@@ -417,6 +417,12 @@ ListedJob ReadJob(const YamlField& field, int number, const fs::path& job_file,
   }
   if (auto f = job.Find("cache_max_mb")) {
     result.options.cache_max_mb = ReadInteger(*f, 1, kLargestCacheMaxMb, errors);
+    // As --cache-max-mb without a cache: a bound on nothing is a mistake, not a setting.
+    if (!job.Find("cache")) {
+      errors.Fail(f->key, f->line,
+                  "a size bound without a cache: give the job a 'cache' folder, or leave "
+                  "cache_max_mb out");
+    }
   }
   return listed;
 }

@@ -372,6 +372,9 @@ TEST_F(JobFileTest, CacheIsAFolderRelativeToTheJobFileWithASizeBound) {
   ExpectError(Minimal("cache: plain\n"), 4, "cache",
               "cache folder '" + (dir_ / "plain").string() + "' exists and is not a folder");
   ExpectError(Minimal("cache_max_mb: 0\n"), 4, "cache_max_mb", "expected");
+  // As --cache-max-mb without --cache: a bound on no cache is refused, not ignored.
+  ExpectError(Minimal("cache_max_mb: 64\n"), 4, "cache_max_mb",
+              "a size bound without a cache: give the job a 'cache' folder");
   ExpectError(Minimal("cache: [a, b]\n"), 4, "cache", "expected a cache folder");
 }
 
