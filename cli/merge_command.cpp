@@ -248,6 +248,10 @@ int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::os
 }
 
 int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream& err) {
+  // An empty name would turn the cache off (even a job file's `cache:`) without a word.
+  if (command.cache_dir && command.cache_dir->empty()) {
+    throw Error("--cache: empty folder name; give a folder (--cache DIR), or leave --cache out");
+  }
   std::vector<Job> jobs;
   if (command.out_dir) {
     jobs.push_back(JobFromMapList(command));

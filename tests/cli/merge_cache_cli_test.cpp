@@ -225,5 +225,13 @@ TEST_F(MergeCacheCliTest, AFolderOrAFifoInAnEntrysPlaceIsRebuilt) {
   }
 }
 
+// `--cache ""` is an error naming the flag, not a silent way to turn the cache off (a job file's too).
+TEST_F(MergeCacheCliTest, AnEmptyCacheNameIsAnError) {
+  const auto run = Merge(dir_ / "out", "--cache ''");
+  EXPECT_EQ(run.exit_code, 1) << run.both();
+  EXPECT_TRUE(Contains(run.err, "--cache: empty folder name")) << run.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
 }  // namespace
 }  // namespace fleetmerge
