@@ -77,20 +77,17 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
   JobRunOptions options;
   options.force = force;
   options.lock_wait_s = lock_wait_s;
-  if (!quiet) {
-    options.lock_notice = [&job, lock_wait_s, &err](const std::string& holder) {
-      err << job.name << ": waiting up to " << lock_wait_s << " s for output folder "
-          << job.output_dir.string() << ", in use by " << holder << "\n"
-          << std::flush;
-    };
-  }
-  if (!quiet) {
-    options.cache_lock_notice = [&job, lock_wait_s, &err](const std::string& holder) {
-      err << job.name << ": waiting up to " << lock_wait_s << " s for cache folder "
-          << job.options.cache_dir.string() << ", in use by " << holder << "\n"
-          << std::flush;
-    };
-  }
+  // Shown even with --quiet: a quiet cron job must not stall for minutes without a word.
+  options.lock_notice = [&job, lock_wait_s, &err](const std::string& holder) {
+    err << job.name << ": waiting up to " << lock_wait_s << " s for output folder "
+        << job.output_dir.string() << ", in use by " << holder << "\n"
+        << std::flush;
+  };
+  options.cache_lock_notice = [&job, lock_wait_s, &err](const std::string& holder) {
+    err << job.name << ": waiting up to " << lock_wait_s << " s for cache folder "
+        << job.options.cache_dir.string() << ", in use by " << holder << "\n"
+        << std::flush;
+  };
   options.progress = MakeProgress(job.name, quiet, err);
   const JobOutcome outcome = RunJob(job, options);
   const FleetResult& result = outcome.result;

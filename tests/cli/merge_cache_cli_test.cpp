@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "io/folder_lock.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/fleetmerge_cli.hpp"
 #include "tests/support/run_command.hpp"
@@ -225,12 +226,31 @@ TEST_F(MergeCacheCliTest, AFolderOrAFifoInAnEntrysPlaceIsRebuilt) {
   }
 }
 
-// `--cache ""` is an error naming the flag, not a silent way to turn the cache off (a job file's too).
+// `--cache ""` is an error naming the flag, not a silent way to turn the cache off (a job file's
+// too).
 TEST_F(MergeCacheCliTest, AnEmptyCacheNameIsAnError) {
   const auto run = Merge(dir_ / "out", "--cache ''");
   EXPECT_EQ(run.exit_code, 1) << run.both();
   EXPECT_TRUE(Contains(run.err, "--cache: empty folder name")) << run.err;
   EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// A job waiting for the cache says so even with --quiet (a quiet cron job must not stall without
+// a word), and names a map list's job shortly; --lock-wait bounds the wait for the cache too.
+TEST_F(MergeCacheCliTest, AQuietJobStillSaysItWaitsForTheCache) {
+  const fs::path cache = dir_ / "cache";
+  fs::create_directories(cache);
+  {
+    FolderLock held(cache, "job 'test holder'", 0, "cache folder", {},
+                    LockFilePlace::kInsideFolder);
+    const auto run = Merge(dir_ / "out", "--lock-wait 0.5 --cache " + ShellQuote(cache));
+    EXPECT_EQ(run.exit_code, 1) << run.both();
+    EXPECT_TRUE(Contains(run.err, "merge: waiting up to 0.5 s for cache folder " + cache.string() +
+                                      ", in use by job 'test holder' (pid "))
+        << run.err;
+    EXPECT_TRUE(Contains(run.err, "is in use by job 'test holder'")) << run.err;
+  }
+  EXPECT_TRUE(Contains(Fleetmerge("merge --help").out, "same output folder or cache folder"));
 }
 
 }  // namespace
