@@ -22,11 +22,11 @@ constexpr char kMagic[16] = {'f', 'l', 'e', 'e', 't', 'm', 'e', 'r',
                              'g', 'e', ' ', 'c', 'a', 'c', 'h', 'e'};
 constexpr std::uint32_t kByteOrderMark = 0x01020304;
 constexpr const char* kEntryExtension = ".entry";
-// Tells backup and archiving tools that the folder holds a cache (https://bford.info/cachedir/).
 constexpr const char* kCacheDirTagName = "CACHEDIR.TAG";
 constexpr const char* kCacheDirSignature = "Signature: 8a477f597d28d172789f06886806bc55\n";
 // The tag's second line marks the folder as fleetmerge's (every fleetmerge wrote it).
 constexpr const char* kCacheDirTagMark = "# This file marks a fleetmerge cache folder";
+// Tells backup and archiving tools that the folder holds a cache (https://bford.info/cachedir/).
 constexpr const char* kCacheDirTag =
     "Signature: 8a477f597d28d172789f06886806bc55\n"
     "# This file marks a fleetmerge cache folder (fleetmerge merge --cache): re-runs reuse its\n"

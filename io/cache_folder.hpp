@@ -17,13 +17,14 @@
 // a link) is counted, removed and reported as absent, so its caller computes it again and
 // writes it anew: no entry can fail or stall a job.
 //
-// One job at a time: the folder is locked (io/folder_lock.hpp, label "cache folder") from the
-// constructor to Unlock (or the destructor). A second job sharing the cache waits for the first and
-// then finds the first job's entries. Entries read are marked as used (their modification time),
-// and Evict removes the least recently used until the folder fits its size bound. The entries this
-// opening read or wrote are never evicted, whatever their times say (a clock that was ahead, a
-// cache copied with its times) and whatever the bound: evicting them would make the job's re-run
-// compute them again, which is what the cache is for.
+// One job at a time: the folder is locked (io/folder_lock.hpp, label "cache folder", by
+// `.fleetmerge-lock` inside it) from the constructor to Unlock (or the destructor). A second job
+// sharing the cache waits for the first and then finds the first job's entries. Entries read are
+// marked as used (their modification time), and Evict removes the least recently used until the
+// folder fits its size bound. The entries this opening read or wrote are never evicted, whatever
+// their times say (a clock that was ahead, a cache copied with its times) and whatever the bound:
+// evicting them would make the job's re-run compute them again, the very work the cache is there to
+// save.
 #pragma once
 
 #include <atomic>
