@@ -226,6 +226,40 @@ TEST_F(MergeCacheCliTest, AFolderOrAFifoInAnEntrysPlaceIsRebuilt) {
   }
 }
 
+// 24 maps make 276 pairs, more than the smallest bound (1 MiB: ~250 entries of a 4 KiB block):
+// the job keeps them all (its re-run takes every pair from the cache) and warns.
+TEST_F(MergeCacheCliTest, ABoundBelowTheJobsPairsKeepsThemAndWarns) {
+  const std::string yaml = ReadFile(dir_ / "ex" / "robot_a.yaml");
+  const std::string origin = "origin: [0, 0, 0]";
+  ASSERT_NE(yaml.find(origin), std::string::npos) << yaml;
+  fs::copy_file(dir_ / "ex" / "robot_a.pgm", dir_ / "robot_a.pgm");
+  std::string maps;
+  for (int k = 1; k <= 24; ++k) {  // one image, 24 origins: 24 different maps to the cache
+    std::string shifted = yaml;
+    shifted.replace(shifted.find(origin), origin.size(),
+                    "origin: [" + std::to_string(k) + ", 0, 0]");
+    const fs::path path = dir_ / ("r" + std::to_string(k) + ".yaml");
+    WriteFile(path, shifted);
+    maps += " " + ShellQuote(path);
+  }
+  const fs::path cache = dir_ / "cache";
+  const std::string merge = "merge --quiet --out " + ShellQuote(dir_ / "out") + " --cache " +
+                            ShellQuote(cache) + " --cache-max-mb 1" + maps;
+  const auto first = Fleetmerge(merge);
+  ASSERT_EQ(first.exit_code, 0) << first.both();
+  EXPECT_TRUE(Contains(first.out, "pairs: 0 from the cache, 276 computed\n")) << first.out;
+  EXPECT_TRUE(Contains(first.err,
+                       "fleetmerge: warning: job 'merge': the cache's size bound (1 MiB, "
+                       "--cache-max-mb / cache_max_mb) is below this job's 276 pairs"))
+      << first.err;
+  const json report = json::parse(ReadFile(dir_ / "out" / "report.json"));
+  EXPECT_EQ(report["cache"]["bound_below_job"], true);
+  EXPECT_EQ(report["cache"]["entries_in_use"], 276);
+  EXPECT_EQ(report["cache"]["entries_evicted"], 0);
+  const auto again = Fleetmerge(merge);
+  EXPECT_TRUE(Contains(again.out, "pairs: 276 from the cache, 0 computed\n")) << again.out;
+}
+
 // `--cache ""` is an error naming the flag, not a silent way to turn the cache off (a job file's
 // too).
 TEST_F(MergeCacheCliTest, AnEmptyCacheNameIsAnError) {
