@@ -276,6 +276,10 @@ void SaveMap(const Map& map, const std::string& yaml_path) {
 }
 
 PairHypotheses Pair(const Map& a, const Map& b, const Options& options) {
+  // Silently computing the pair anew would read as "the cache did not help".
+  Require(options.cache_dir.empty(),
+          "pair has no cache (cache_dir is merge's option: it keeps a fleet's pairs for re-runs); "
+          "leave cache_dir out");
   const PairOptions pair_options = ToFleetOptions(options).pair;
   const OccupancyGrid grid_a = ToGrid(a), grid_b = ToGrid(b);
   const PairResult result = MergePair(grid_a, grid_b, pair_options, options.threads);

@@ -83,8 +83,8 @@ int RunAllCommands(int argc, char** argv) {
                       "replace an output folder that holds the results of another job");
   merge_app
       ->add_option("--lock-wait", merge.lock_wait_s,
-                   "seconds to wait for another job writing the same output folder (0: fail at "
-                   "once)")
+                   "seconds to wait for another job using the same output folder or cache "
+                   "folder (0: fail at once)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   merge_app->add_option("--cache", merge.cache_dir,

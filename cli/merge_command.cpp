@@ -34,6 +34,13 @@ std::string TimeLeft(Clock::time_point start, int done, int total) {
   return text;
 }
 
+// "0.3" for 300 kB: one decimal.
+std::string MebibytesText(std::int64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", static_cast<double>(bytes) / (1 << 20));
+  return text;
+}
+
 // A bar redrawn in place on a terminal; otherwise a line per stage about every quarter of its
 // work and at its end. Before its end a stage also shows the time it has left.
 ProgressFn MakeProgress(const std::string& job, bool quiet, std::ostream& err) {
@@ -102,20 +109,17 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
   JobRunOptions options;
   options.force = force;
   options.lock_wait_s = lock_wait_s;
-  if (!quiet) {
-    options.lock_notice = [&job, lock_wait_s, &err](const std::string& holder) {
-      err << job.name << ": waiting up to " << lock_wait_s << " s for output folder "
-          << job.output_dir.string() << ", in use by " << holder << "\n"
-          << std::flush;
-    };
-  }
-  if (!quiet) {
-    options.cache_lock_notice = [&job, lock_wait_s, &err](const std::string& holder) {
-      err << job.name << ": waiting up to " << lock_wait_s << " s for cache folder "
-          << job.options.cache_dir.string() << ", in use by " << holder << "\n"
-          << std::flush;
-    };
-  }
+  // Shown even with --quiet: a quiet cron job must not stall for minutes without a word.
+  options.lock_notice = [&job, lock_wait_s, &err](const std::string& holder) {
+    err << job.name << ": waiting up to " << lock_wait_s << " s for output folder "
+        << job.output_dir.string() << ", in use by " << holder << "\n"
+        << std::flush;
+  };
+  options.cache_lock_notice = [&job, lock_wait_s, &err](const std::string& holder) {
+    err << job.name << ": waiting up to " << lock_wait_s << " s for cache folder "
+        << job.options.cache_dir.string() << ", in use by " << holder << "\n"
+        << std::flush;
+  };
   options.progress = MakeProgress(job.name, quiet, err);
   const JobOutcome outcome = RunJob(job, options);
   const FleetResult& result = outcome.result;
@@ -137,8 +141,16 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
     out << job.name << ": pairs: " << cache.pairs_cached << " from the cache, "
         << cache.pairs_computed << " computed";
     if (cache.rejected > 0) out << "; " << cache.rejected << " bad cache entries rebuilt";
-    if (cache.evicted > 0) out << "; " << cache.evicted << " old cache entries evicted";
+    // Never this job's entries (CacheFolder::Evict): older ones, of this job or others.
+    if (cache.evicted > 0) out << "; " << cache.evicted << " older cache entries evicted";
     out << "\n";
+    if (cache.over_bound) {
+      err << "fleetmerge: warning: job '" << job.name << "': the cache's size bound ("
+          << job.options.cache_max_mb << " MiB, --cache-max-mb / cache_max_mb) is below this job's "
+          << cache.entries_in_use << " pairs (" << MebibytesText(cache.in_use_bytes)
+          << " MiB); they were all kept, so " << job.options.cache_dir.string()
+          << " holds more than its bound; raise the bound to keep other jobs' pairs too\n";
+    }
     if (cache.write_failures > 0) {
       err << "fleetmerge: warning: job '" << job.name << "': " << cache.write_failures
           << " pair(s) could not be stored in the cache: " << cache.first_write_error << "\n";
@@ -267,6 +279,10 @@ int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::os
 }
 
 int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream& err) {
+  // An empty name would turn the cache off (even a job file's `cache:`) without a word.
+  if (command.cache_dir && command.cache_dir->empty()) {
+    throw Error("--cache: empty folder name; give a folder (--cache DIR), or leave --cache out");
+  }
   std::vector<Job> jobs;
   if (command.out_dir) {
     jobs.push_back(JobFromMapList(command));

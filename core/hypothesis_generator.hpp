@@ -22,9 +22,11 @@ namespace fleetmerge {
 
 struct HypothesisOptions {
   HoughOptions hough;
-  SamplingOptions hough_sampling;    // points used for the Hough transform (Section III-D)
-  SamplingOptions spectra_sampling;  // points used for the X/Y spectra (Section III-D)
-  int rotation_peaks = 4;            // the paper's n: local maxima of C taken
+  SamplingOptions hough_sampling;  // points used for the Hough transform (Section III-D)
+  // Points used for the X/Y spectra (Section III-D). Seed 1: every front end seeds the Hough
+  // transform with its seed and the spectra with seed + 1, and their default seed is 0.
+  SamplingOptions spectra_sampling{SamplingMode::kAll, 1.0, 1, 1};
+  int rotation_peaks = 4;  // the paper's n: local maxima of C taken
   TranslationOptions translation;
   int max_hypotheses = 4;  // returned, best first
   // Candidates closer than this are one hypothesis (the better omega is kept).

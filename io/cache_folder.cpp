@@ -1,9 +1,12 @@
 #include "io/cache_folder.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <tuple>
 #include <vector>
 
@@ -19,6 +22,10 @@ constexpr char kMagic[16] = {'f', 'l', 'e', 'e', 't', 'm', 'e', 'r',
                              'g', 'e', ' ', 'c', 'a', 'c', 'h', 'e'};
 constexpr std::uint32_t kByteOrderMark = 0x01020304;
 constexpr const char* kEntryExtension = ".entry";
+constexpr const char* kCacheDirTagName = "CACHEDIR.TAG";
+constexpr const char* kCacheDirSignature = "Signature: 8a477f597d28d172789f06886806bc55\n";
+// The tag's second line marks the folder as fleetmerge's (every fleetmerge wrote it).
+constexpr const char* kCacheDirTagMark = "# This file marks a fleetmerge cache folder";
 // Tells backup and archiving tools that the folder holds a cache (https://bford.info/cachedir/).
 constexpr const char* kCacheDirTag =
     "Signature: 8a477f597d28d172789f06886806bc55\n"
@@ -57,6 +64,9 @@ std::optional<std::string> ParseEntry(const std::string& bytes, const ContentDig
 }
 
 constexpr std::size_t kKeyDigits = 2 * sizeof(ContentDigest);
+// Entries hold a pair's few hypotheses (~330 bytes): a file beyond this is no entry, and is not
+// read whole into memory.
+constexpr std::size_t kLargestEntryBytes = std::size_t(1) << 24;
 // Format 1 named its entries by 64 hex digits (SHA-256 keys): no reader finds them any more.
 constexpr std::size_t kFormat1KeyDigits = 64;
 
@@ -74,6 +84,90 @@ bool IsEntryTempName(const std::string& name) {
   const std::size_t entry = kKeyDigits + std::strlen(kEntryExtension);
   if (name.size() < 1 + entry + 5 || name[0] != '.') return false;
   return IsEntryName(name.substr(1, entry)) && name.compare(1 + entry, 5, ".tmp.") == 0;
+}
+
+// What `path` takes on its file system (its allocated blocks; not followed if a link), 0 when it
+// is gone. A ~330-byte entry takes a whole block (4 KiB on ext4), so file sizes would let the
+// folder grow to ~12 times its bound.
+std::int64_t DiskBytes(const fs::path& path) {
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) != 0) return 0;
+  return static_cast<std::int64_t>(info.st_blocks) * 512;  // st_blocks counts 512-byte units
+}
+
+// Up to `limit` bytes of `path` when it is a regular file (not followed if a link; a FIFO is
+// never opened, so never waited on), nullopt otherwise or when it cannot be read.
+std::optional<std::string> ReadRegularFile(const fs::path& path, std::size_t limit) {
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) != 0 || !S_ISREG(info.st_mode)) return std::nullopt;
+  // O_NONBLOCK: should a FIFO take the file's place after the check, open does not wait for a
+  // writer (and fstat then refuses it).
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  std::optional<std::string> bytes;
+  if (::fstat(fd, &info) == 0 && S_ISREG(info.st_mode)) {
+    bytes.emplace();
+    char buffer[1 << 16];
+    while (bytes->size() < limit) {
+      const ssize_t n = ::read(fd, buffer, std::min(sizeof buffer, limit - bytes->size()));
+      if (n == 0) break;
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) {
+        bytes.reset();
+        break;
+      }
+      bytes->append(buffer, static_cast<std::size_t>(n));
+    }
+  }
+  ::close(fd);
+  return bytes;
+}
+
+bool IsFleetmergeCache(const fs::path& dir) {
+  const std::optional<std::string> tag = ReadRegularFile(dir / kCacheDirTagName, 4096);
+  return tag && tag->rfind(kCacheDirSignature, 0) == 0 &&
+         tag->find(kCacheDirTagMark) != std::string::npos;
+}
+
+// Throws unless `dir` (an existing folder) may become a cache: it is empty or a fleetmerge
+// cache. Anything else is someone's files, which the CACHEDIR.TAG written next would hide from
+// backups made with --exclude-caches (and which the eviction would sit beside).
+void CheckEmptyOrCache(const fs::path& dir, const std::string& shown) {
+  if (IsFleetmergeCache(dir)) return;
+  const std::string tag_temp = std::string(".") + kCacheDirTagName + ".tmp.";
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    // A job creating this cache at this moment: its lock, its tag being written.
+    if (name == FolderLockPath(dir, LockFilePlace::kInsideFolder).filename() ||
+        name.rfind(tag_temp, 0) == 0) {
+      continue;
+    }
+    throw Error("cache folder " + shown +
+                " is not empty and is not a fleetmerge cache (it holds '" + name +
+                "' and no CACHEDIR.TAG written by fleetmerge); give a new or empty folder, " +
+                "or a fleetmerge cache folder (fleetmerge marks its cache with CACHEDIR.TAG, " +
+                "which makes backup tools skip the whole folder)");
+  }
+  if (ec) throw Error("cache folder " + shown + ": cannot list it: " + ec.message());
+}
+
+// Throws when one of `inputs` lies inside `dir` (checked through links).
+void CheckHoldsNoInput(const fs::path& dir, const std::string& shown,
+                       const std::vector<fs::path>& inputs) {
+  std::error_code ec;
+  const fs::path folder = fs::weakly_canonical(dir, ec);
+  if (ec) return;
+  for (const fs::path& input : inputs) {
+    if (input.empty()) continue;
+    const fs::path file = fs::weakly_canonical(input, ec);
+    if (ec) continue;
+    const fs::path relative = file.lexically_relative(folder);
+    if (relative.empty() || *relative.begin() == "..") continue;
+    throw Error("cache folder " + shown + " holds the job's input file " + input.string() +
+                "; the cache folder is fleetmerge's (CACHEDIR.TAG makes backup tools skip it): " +
+                "give the cache a folder of its own");
+  }
 }
 
 }  // namespace
@@ -94,27 +188,32 @@ std::string CacheEntryBytes(const ContentDigest& key, const std::string& version
 
 CacheFolder::CacheFolder(const fs::path& dir, const std::string& version,
                          const CacheFolderOptions& options)
-    : dir_(dir), version_(version), max_bytes_(options.max_bytes) {
+    // One folder, one lock, however it is spelled (a link to the folder included).
+    : dir_(ResolvedFolder(dir)),
+      shown_(dir.string()),
+      version_(version),
+      max_bytes_(options.max_bytes) {
   std::error_code ec;
   if (fs::exists(dir_, ec) && !fs::is_directory(dir_, ec)) {
-    throw Error("cache folder " + dir_.string() + " exists and is not a folder");
+    throw Error("cache folder " + shown_ + " exists and is not a folder");
   }
-  // The lock file lives beside the folder: its parent must exist first.
-  const fs::path parent = fs::absolute(dir_, ec).lexically_normal().parent_path();
-  fs::create_directories(parent, ec);
-  if (ec) {
-    throw Error("cache folder " + dir_.string() + ": cannot create " + parent.string() + ": " +
-                ec.message());
-  }
-  lock_.emplace(dir_, options.job, options.lock_wait_s, "cache folder", options.lock_notice);
+  if (fs::is_directory(dir_, ec)) CheckEmptyOrCache(dir_, shown_);
+  CheckHoldsNoInput(dir_, shown_, options.inputs);
+  // The lock file lives inside the folder (the folder is fleetmerge's; its parent may be
+  // another user's), so the folder is made first.
   fs::create_directories(dir_, ec);
-  if (ec) throw Error("cache folder " + dir_.string() + ": cannot create it: " + ec.message());
+  if (ec) throw Error("cache folder " + shown_ + ": cannot create it: " + ec.message());
+  if (::access(dir_.c_str(), W_OK | X_OK) != 0) {
+    throw Error("cache folder " + shown_ + " is not writable: " + std::strerror(errno));
+  }
+  lock_.emplace(dir_, options.job, options.lock_wait_s, "cache folder", options.lock_notice,
+                LockFilePlace::kInsideFolder);
   // Written (atomically) at every opening: that also proves the folder writable now, rather
   // than after a job's worth of pairs.
   try {
-    WriteFileAtomically(dir_ / "CACHEDIR.TAG", kCacheDirTag);
+    WriteFileAtomically(dir_ / kCacheDirTagName, kCacheDirTag);
   } catch (const Error& e) {
-    throw Error("cache folder " + dir_.string() + " is not writable: " + e.what());
+    throw Error("cache folder " + shown_ + " is not writable: " + e.what());
   }
 }
 
@@ -131,18 +230,22 @@ void CacheFolder::CheckLocked() const {
 std::optional<std::string> CacheFolder::Read(const ContentDigest& key) {
   CheckLocked();
   const fs::path path = EntryPath(key);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;  // absent (or unreadable: rewritten below by the caller)
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::optional<std::string> payload = in.bad() ? std::nullopt : ParseEntry(bytes, key, version_);
+  struct stat info {};
+  if (::lstat(path.c_str(), &info) != 0) return std::nullopt;  // absent
+  // A folder, FIFO, link or anything else at the entry's name, and a file that cannot be read,
+  // is a bad entry like a corrupt one: the job goes on without it (a FIFO is never opened: it
+  // would wait for a writer forever, holding the cache's lock).
+  const std::optional<std::string> bytes = ReadRegularFile(path, kLargestEntryBytes);
+  std::optional<std::string> payload = bytes ? ParseEntry(*bytes, key, version_) : std::nullopt;
   std::error_code ec;
   if (!payload) {
     ++rejected_;
-    fs::remove(path, ec);
+    fs::remove(path, ec);  // a file, link, FIFO or empty folder (never what a folder holds)
     return std::nullopt;
   }
-  // Used now: the last to be evicted (a failure only makes it look older).
+  // Used now: the last to be evicted by later jobs (a failure only makes it look older to them).
   fs::last_write_time(path, fs::file_time_type::clock::now(), ec);
+  MarkUsed(key);
   return payload;
 }
 
@@ -153,22 +256,32 @@ void CacheFolder::Discard(const ContentDigest& key) {
   fs::remove(EntryPath(key), ec);
 }
 
+void CacheFolder::MarkUsed(const ContentDigest& key) {
+  const std::lock_guard<std::mutex> lock(used_mutex_);
+  used_.insert(EntryPath(key).filename().string());
+}
+
 void CacheFolder::Write(const ContentDigest& key, const std::string& payload) {
   CheckLocked();
   WriteFileAtomically(EntryPath(key), CacheEntryBytes(key, version_, payload), {},
                       AtomicWrite::kNoSync);
+  MarkUsed(key);
 }
 
-int CacheFolder::Evict() {
+CacheEviction CacheFolder::Evict() {
   CheckLocked();
+  const std::lock_guard<std::mutex> lock(used_mutex_);
   struct Entry {
     fs::file_time_type used;
     fs::path path;
     std::int64_t bytes;
   };
   std::vector<Entry> entries;
-  std::int64_t total = 0;
-  int removed = 0;
+  // The folder's own blocks and its other files (CACHEDIR.TAG, the lock) count too: the bound is
+  // on what the folder takes on disk.
+  std::int64_t total = DiskBytes(dir_);
+  CacheEviction eviction;
+  int& removed = eviction.removed;
   std::error_code ec;
   for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
@@ -181,12 +294,17 @@ int CacheFolder::Evict() {
       removed += fs::remove(it->path(), entry_ec) ? 1 : 0;
       continue;
     }
-    if (!IsEntryName(name) || !it->is_regular_file(entry_ec)) continue;
-    const auto bytes = static_cast<std::int64_t>(it->file_size(entry_ec));
+    const std::int64_t bytes = DiskBytes(it->path());
+    total += bytes;
+    if (!IsEntryName(name) || !it->is_regular_file(entry_ec) || it->is_symlink(entry_ec)) continue;
     const fs::file_time_type used = it->last_write_time(entry_ec);
     if (entry_ec) continue;
+    if (used_.count(name) != 0) {  // this job's: counted, never a candidate
+      ++eviction.in_use;
+      eviction.in_use_bytes += bytes;
+      continue;
+    }
     entries.push_back({used, it->path(), bytes});
-    total += bytes;
   }
   std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
     return std::tie(a.used, a.path) < std::tie(b.used, b.path);
@@ -199,7 +317,8 @@ int CacheFolder::Evict() {
       ++removed;
     }
   }
-  return removed;
+  eviction.over_bound = eviction.in_use_bytes > max_bytes_;
+  return eviction;
 }
 
 }  // namespace fleetmerge

@@ -98,8 +98,25 @@ fs::path NormalisedFolder(const fs::path& folder) {
   return path;
 }
 
-fs::path FolderLockPath(const fs::path& folder) {
-  const fs::path path = NormalisedFolder(folder);
+fs::path ResolvedFolder(const fs::path& folder) {
+  fs::path path = NormalisedFolder(folder);
+  std::error_code ec;
+  // weakly_canonical alone leaves a link to a missing folder unresolved (the link's target is
+  // what a job creates and locks): follow the last name's links by hand, up to the kernel's limit.
+  for (int hops = 0; hops < 40; ++hops) {
+    const fs::path parent = fs::weakly_canonical(path.parent_path(), ec);
+    if (!ec) path = parent / path.filename();
+    if (!fs::is_symlink(fs::symlink_status(path, ec))) break;
+    const fs::path target = fs::read_symlink(path, ec);
+    if (ec) break;
+    path = NormalisedFolder(path.parent_path() / target);  // an absolute target replaces it all
+  }
+  return path;
+}
+
+fs::path FolderLockPath(const fs::path& folder, LockFilePlace place) {
+  const fs::path path = ResolvedFolder(folder);
+  if (place == LockFilePlace::kInsideFolder) return path / kLockTag;
   return path.parent_path() / ("." + path.filename().string() + kLockTag);
 }
 
@@ -136,9 +153,9 @@ std::optional<FolderLockHolder> ParseFolderLockFile(const std::string& text) {
 }
 
 FolderLock::FolderLock(const fs::path& folder, const std::string& job, double wait_s,
-                       const std::string& label, const WaitNotice& notice)
-    : path_(FolderLockPath(folder)) {
-  const std::string folder_name = NormalisedFolder(folder).string();
+                       const std::string& label, const WaitNotice& notice, LockFilePlace place)
+    : path_(FolderLockPath(folder, place)) {
+  const std::string folder_name = NormalisedFolder(folder).string();  // as the caller spells it
   const double bounded_wait_s = wait_s > 0 ? std::min(wait_s, kLongestWaitS) : 0.0;  // NaN: 0
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(

@@ -112,10 +112,12 @@ void ReadOptions(const YamlMapping& job, FleetOptions& options, const YamlErrors
   if (auto f = job.Find("refine")) options.pair.refine = ReadBool(*f, errors);
   if (auto f = job.Find("hough")) ReadHough(*f, hypotheses, errors);
   if (auto f = job.Find("translation")) ReadTranslation(*f, hypotheses, errors);
-  if (auto f = job.Find("seed")) {  // as on the command line: Hough seed, spectra seed + 1
-    const auto seed = static_cast<std::uint32_t>(ReadInteger(*f, 0, UINT32_MAX, errors));
+  {  // as on the command line (default 0): Hough seed, spectra seed + 1
+    const auto f = job.Find("seed");
+    const auto seed =
+        f ? static_cast<std::uint32_t>(ReadInteger(*f, 0, UINT32_MAX, errors)) : std::uint32_t(0);
     hypotheses.hough_sampling.seed = seed;
-    hypotheses.spectra_sampling.seed = seed + 1;
+    hypotheses.spectra_sampling.seed = seed + 1;  // also after a `sampling` spec (seed 0)
   }
   if (auto f = job.Find("pose_graph")) ReadPoseGraph(*f, options.pose_graph, errors);
   if (auto f = job.Find("octree")) ReadOctreeOptions(*f, options.octree, errors);
@@ -429,6 +431,12 @@ ListedJob ReadJob(const YamlField& field, int number, const fs::path& job_file,
   }
   if (auto f = job.Find("cache_max_mb")) {
     result.options.cache_max_mb = ReadInteger(*f, 1, kLargestCacheMaxMb, errors);
+    // As --cache-max-mb without a cache: a bound on nothing is a mistake, not a setting.
+    if (!job.Find("cache")) {
+      errors.Fail(f->key, f->line,
+                  "a size bound without a cache: give the job a 'cache' folder, or leave "
+                  "cache_max_mb out");
+    }
   }
   return listed;
 }

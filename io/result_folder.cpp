@@ -186,8 +186,9 @@ ResultManifest ReadResultManifest(const fs::path& folder) {
 
 ResultFolder::ResultFolder(fs::path output_dir, std::string job_id, bool force,
                            const std::vector<fs::path>& inputs, double lock_wait_s,
-                           const FolderLock::WaitNotice& notice)
-    : output_dir_(NormalisedFolder(output_dir)), job_id_(std::move(job_id)) {
+                           const FolderLock::WaitNotice& notice, const std::string& holder)
+    // A link to a folder is kept: the set replaces the folder it points to.
+    : output_dir_(ResolvedFolder(output_dir)), job_id_(std::move(job_id)) {
   std::replace(job_id_.begin(), job_id_.end(), '\n', ' ');  // the manifest is line-based
   std::error_code ec;
   fs::create_directories(output_dir_.parent_path(), ec);
@@ -195,7 +196,8 @@ ResultFolder::ResultFolder(fs::path output_dir, std::string job_id, bool force,
     throw Error(output_dir_.string() + ": cannot create the folder that holds it (" +
                 output_dir_.parent_path().string() + "): " + ec.message());
   }
-  lock_.emplace(output_dir_, job_id_, lock_wait_s, "output folder", notice);
+  lock_.emplace(output_dir_, holder.empty() ? job_id_ : holder, lock_wait_s, "output folder",
+                notice);
   RecoverLeftovers(output_dir_);  // the lock is ours: nobody else is writing beside the folder
   if (fs::exists(output_dir_, ec)) {
     if (!fs::is_directory(output_dir_, ec)) {

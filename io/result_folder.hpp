@@ -18,6 +18,9 @@
 //   - it holds none of the job's inputs (neither map files nor the job file), and
 //   - its manifest names the same job, or `force` is set.
 //
+// An output folder named through a link (`--out link` where link points to a folder) is the
+// link's target: the set replaces the target (staged beside it), and the link stays.
+//
 // One job at a time: a ResultFolder holds the output folder's lock (io/folder_lock.hpp) from
 // before it looks at the folder until it is destroyed (after Publish, or when the job is
 // abandoned). A second job writing the same folder waits for the first to finish (up to
@@ -51,13 +54,13 @@ ResultManifest ReadResultManifest(const std::filesystem::path& folder);
 class ResultFolder {
  public:
   // Locks `output_dir` (waiting up to `lock_wait_s` seconds, 0: not at all; `notice` is told
-  // when it waits), checks that it may be replaced (see above; throws fleetmerge::Error saying
-  // why not, or naming the job holding the lock), removes what killed earlier runs left beside
-  // it, and creates an empty staging folder.
+  // when it waits; the lock names `holder`, or `job_id` when it is empty), checks that it may be
+  // replaced (see above; throws fleetmerge::Error saying why not, or naming the job holding the
+  // lock), removes what killed earlier runs left beside it, and creates an empty staging folder.
   ResultFolder(std::filesystem::path output_dir, std::string job_id, bool force,
                const std::vector<std::filesystem::path>& inputs,
                double lock_wait_s = kDefaultOutputLockWaitS,
-               const FolderLock::WaitNotice& notice = {});
+               const FolderLock::WaitNotice& notice = {}, const std::string& holder = {});
   ResultFolder(const ResultFolder&) = delete;
   ResultFolder& operator=(const ResultFolder&) = delete;
   ~ResultFolder();  // removes the staging folder unless Publish succeeded

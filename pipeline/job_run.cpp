@@ -140,18 +140,36 @@ Job MapListJob(const std::vector<std::filesystem::path>& paths,
   return job;
 }
 
+namespace {
+
+std::string CanonicalText(const std::filesystem::path& path) {
+  std::error_code ec;
+  const std::filesystem::path c = std::filesystem::weakly_canonical(path, ec);
+  return (ec ? path : c).string();
+}
+
+// A map in an identity: its file, or (maps in memory, the library API) its name.
+std::string MapIdentity(const JobMap& map) {
+  return map.path.empty() ? "memory:" + map.name : CanonicalText(map.path);
+}
+
+}  // namespace
+
 std::string JobIdentity(const Job& job) {
-  const auto canonical = [](const std::filesystem::path& path) {
-    std::error_code ec;
-    const std::filesystem::path c = std::filesystem::weakly_canonical(path, ec);
-    return (ec ? path : c).string();
-  };
-  if (!job.job_file.empty()) return "job '" + job.name + "' of " + canonical(job.job_file);
+  if (!job.job_file.empty()) return "job '" + job.name + "' of " + CanonicalText(job.job_file);
   std::string maps = "maps";
-  for (const JobMap& map : job.maps) {  // maps in memory (the library API) by name
-    maps += " " + (map.path.empty() ? "memory:" + map.name : canonical(map.path));
-  }
+  for (const JobMap& map : job.maps) maps += " " + MapIdentity(map);
   return maps;
+}
+
+std::string JobLockHolder(const Job& job) {
+  if (!job.job_file.empty() || job.maps.empty()) return JobIdentity(job);
+  std::string holder = "job '" + job.name + "' of " + MapIdentity(job.maps.front());
+  const std::size_t more = job.maps.size() - 1;
+  if (more > 0) {
+    holder += " and " + std::to_string(more) + " more map" + (more == 1 ? "" : "s");
+  }
+  return holder;
 }
 
 JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
@@ -187,7 +205,7 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
   std::optional<ResultFolder> folder;
   if (options.write) {
     folder.emplace(job.output_dir, JobIdentity(job), options.force, protect, options.lock_wait_s,
-                   options.lock_notice);
+                   options.lock_notice, JobLockHolder(job));
   }
   std::vector<const OccupancyGrid*> grids;
   for (const auto& l : loaded) grids.push_back(&l.grid);
@@ -211,7 +229,9 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
       cache_options.max_bytes = job.options.cache_max_mb << 20;
       cache_options.lock_wait_s = options.lock_wait_s;
       cache_options.lock_notice = options.cache_lock_notice;
-      cache_options.job = JobIdentity(job);
+      cache_options.job = JobLockHolder(job);
+      cache_options.inputs = protect;
+      for (const JobMap& map : job.maps) cache_options.inputs.push_back(map.path);  // bags, octrees
       cache.emplace(job.options.cache_dir, FLEETMERGE_VERSION_STRING, cache_options);
     }
     FleetOptions fleet_options = job.options;
@@ -251,6 +271,8 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
                                {"maps_prepared", stats.maps_prepared},
                                {"entries_rejected", stats.rejected},
                                {"entries_evicted", stats.evicted},
+                               {"entries_in_use", stats.entries_in_use},
+                               {"bound_below_job", stats.over_bound},
                                {"write_failures", stats.write_failures}};
     if (!stats.first_write_error.empty()) {
       outcome.report["cache"]["first_write_error"] = stats.first_write_error;

@@ -56,6 +56,11 @@ Job MapListJob(const std::vector<std::filesystem::path>& paths,
 // another job needs `force`.
 std::string JobIdentity(const Job& job);
 
+// The job as a lock's holder is named to a waiting job: a job file's job by its identity, a map
+// list by its first map and how many more ("job 'merge' of /a/robot1.yaml and 11 more maps"),
+// not every map as its identity does.
+std::string JobLockHolder(const Job& job);
+
 // Runs `job` on its maps already loaded: loaded[m] (and octrees[m], empty for a 2-D map, or an
 // empty vector when the job has no octree) belongs to job.maps[m]. load_ms is reported as the
 // load time. Throws fleetmerge::Error (or a filesystem error) when the output folder may not be

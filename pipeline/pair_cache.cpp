@@ -22,7 +22,9 @@ void AppendSampling(std::string& bytes, const char* name, const SamplingOptions&
   AppendField(bytes, ".mode", static_cast<int>(s.mode));
   AppendField(bytes, ".fraction", s.fraction);
   AppendField(bytes, ".step", s.step);
-  AppendField(bytes, ".seed", s.seed);
+  // The seed picks the points of random sampling only (core/point_sampling.cpp); with every
+  // point (the default) or every k-th it changes nothing, so it does not split the cache.
+  if (s.mode == SamplingMode::kRandomFraction) AppendField(bytes, ".seed", s.seed);
 }
 
 void AppendAlignment(std::string& bytes, const char* name, const LocalAlignmentOptions& a) {
@@ -68,7 +70,8 @@ ContentDigest PairOptionsDigest(const PairOptions& o, const std::string& version
   // 2: the refinement solved with ceres::TinySolver (refine/local_alignment.cpp).
   // 3: the translation search's 5 x 5 blur by core/image_filters (float rounding differs from
   //    OpenCV's; refined poses move by ~1e-6 m).
-  constexpr int kPairResultsRevision = 3;
+  // 4: the key layout: sampling seeds only with random sampling.
+  constexpr int kPairResultsRevision = 4;
   AppendField(bytes, "pair_results_revision", kPairResultsRevision);
   AppendField(bytes, "hough.n_theta", h.hough.n_theta);
   AppendField(bytes, "hough.rho_step_cells", h.hough.rho_step_cells);
@@ -181,7 +184,7 @@ void PairCache::StorePair(const ContentDigest& options, const ContentDigest& a,
 void PairCache::Close() {
   if (closed_) return;
   closed_ = true;
-  evicted_ += folder_.Evict();
+  eviction_ = folder_.Evict();
   folder_.Unlock();
 }
 
@@ -197,7 +200,10 @@ PairCacheStats PairCache::stats() const {
   stats.pairs_computed = pairs_computed_;
   stats.maps_prepared = maps_prepared_;
   stats.rejected = folder_.rejected();
-  stats.evicted = evicted_;
+  stats.evicted = eviction_.removed;
+  stats.entries_in_use = eviction_.in_use;
+  stats.in_use_bytes = eviction_.in_use_bytes;
+  stats.over_bound = eviction_.over_bound;
   stats.write_failures = write_failures_;
   const std::lock_guard<std::mutex> lock(error_mutex_);
   stats.first_write_error = first_write_error_;

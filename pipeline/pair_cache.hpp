@@ -6,7 +6,8 @@
 // A pair's entry is keyed by the content hash (io/content_hash.hpp) of
 //   - both maps' contents as the pair search sees them (MapDigest: size, resolution, origin and
 //     every cell, after resampling to the job's resolution), in the pair's order (a before b),
-//   - every PairOptions field (PairOptionsDigest; MergeFleet copies min_overlap_cells in), and
+//   - every PairOptions field that can change a pair's hypotheses (PairOptionsDigest; MergeFleet
+//     copies min_overlap_cells in; a sampling seed only with random sampling), and
 //   - fleetmerge's version (a new version may compute other hypotheses).
 // What the entry holds is exactly what ComputeAllPairs returns for the pair (doubles as their
 // bytes), so a merge with the cache is the merge without it, bit for bit.
@@ -43,8 +44,11 @@ struct PairCacheStats {
   int pairs_computed = 0;  // computed (and stored)
   int maps_prepared = 0;   // maps prepared for the pairs computed (pipeline/prepared_map.hpp)
   int rejected = 0;        // entries found corrupt, truncated, foreign or of another version
-  int evicted = 0;         // entries removed for the size bound
-  int write_failures = 0;  // entries that could not be stored (the job goes on without them)
+  int evicted = 0;         // entries of other jobs removed for the size bound
+  int entries_in_use = 0;  // this job's entries, never evicted (CacheFolder::Evict)
+  std::int64_t in_use_bytes = 0;
+  bool over_bound = false;  // this job's entries alone take more than the bound (all kept)
+  int write_failures = 0;   // entries that could not be stored (the job goes on without them)
   std::string first_write_error;
 };
 
@@ -81,8 +85,8 @@ class PairCache {
   std::string version_;
   CacheFolder folder_;
   bool closed_ = false;
-  std::atomic<int> pairs_cached_{0}, pairs_computed_{0}, maps_prepared_{0}, evicted_{0},
-      write_failures_{0};
+  std::atomic<int> pairs_cached_{0}, pairs_computed_{0}, maps_prepared_{0}, write_failures_{0};
+  CacheEviction eviction_;
   mutable std::mutex error_mutex_;
   std::string first_write_error_;
 };

@@ -69,6 +69,10 @@ def pair(a, b, n=4, **options):
     .wall_agreement), with .ambiguous (the runner-up is a different pose the maps cannot tell
     apart: a coin toss) and .margin (the best's lead in evidence, nats; inf without a
     runner-up). a and b are Maps or paths."""
+    for key in ("cache_dir", "cache_max_mb"):
+        if key in options:  # ignoring it would read as "the cache did not help"
+            raise ValueError(f"pair() has no cache: '{key}' is an option of merge(), which keeps "
+                             "a fleet's pairs for re-runs; leave it out")
     o = _options(options)
     o.hypotheses = n
     return _fleetmerge.pair(_map(a, "a"), _map(b, "b"), o)

@@ -2,11 +2,13 @@
 // from the cache (printed, and in report.json) with the same result; a cache folder that is a
 // file fails the job naming it; a cache entry of garbage is rebuilt.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "io/folder_lock.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/fleetmerge_cli.hpp"
 #include "tests/support/run_command.hpp"
@@ -91,6 +93,19 @@ TEST_F(MergeCacheCliTest, AJobFilesCacheIsRelativeToItAndTheFlagOverridesIt) {
   EXPECT_TRUE(fs::is_directory(other));
 }
 
+// A job file without `seed:` and `merge --out` of the same maps share their pairs.
+TEST_F(MergeCacheCliTest, AJobFileAndAMapListShareTheirPairs) {
+  const fs::path cache = dir_ / "cache";
+  WriteFile(dir_ / "job.yaml",
+            "maps: [ex/robot_a.yaml, ex/robot_b.yaml]\noutput: job_out\ncache: cache\n");
+  const auto job = Fleetmerge("merge --quiet " + ShellQuote(dir_ / "job.yaml"));
+  ASSERT_EQ(job.exit_code, 0) << job.both();
+  EXPECT_TRUE(Contains(job.out, "pairs: 0 from the cache, 1 computed")) << job.out;
+  const auto list = Merge(dir_ / "list_out", "--cache " + ShellQuote(cache));
+  ASSERT_EQ(list.exit_code, 0) << list.both();
+  EXPECT_TRUE(Contains(list.out, "pairs: 1 from the cache, 0 computed")) << list.out;
+}
+
 TEST_F(MergeCacheCliTest, TwoJobsSharingACacheAtOnceTakeTurns) {
   // Two merges into different folders started together: the second waits for the cache's lock,
   // then finds the first's pair. Either way exactly one of them computes it.
@@ -126,6 +141,19 @@ TEST_F(MergeCacheCliTest, ACacheFolderThatIsAFileFailsTheJobNamingIt) {
   EXPECT_TRUE(Contains(run.err, "cache folder " + file.string() + " exists and is not a folder"))
       << run.err;
   EXPECT_EQ(ReadFile(file), "precious");
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "report.json"));
+}
+
+// `--cache` naming the folder of the job's maps: refused before anything is written there (a
+// CACHEDIR.TAG would make backups skip the maps).
+TEST_F(MergeCacheCliTest, AFolderOfMapsIsNotMadeACache) {
+  const fs::path maps = dir_ / "ex";
+  const auto run = Merge(dir_ / "out", "--cache " + ShellQuote(maps));
+  EXPECT_EQ(run.exit_code, 1) << run.both();
+  EXPECT_TRUE(Contains(
+      run.err, "cache folder " + maps.string() + " is not empty and is not a fleetmerge cache"))
+      << run.err;
+  EXPECT_FALSE(fs::exists(maps / "CACHEDIR.TAG"));
   EXPECT_FALSE(fs::exists(dir_ / "out" / "report.json"));
 }
 
@@ -169,6 +197,94 @@ TEST_F(MergeCacheCliTest, AGarbageEntryIsRebuilt) {
   EXPECT_EQ(report["cache"]["entries_rejected"], 1);
   const auto again = Merge(dir_ / "out", "--cache " + ShellQuote(cache));
   EXPECT_TRUE(Contains(again.out, "pairs: 1 from the cache, 0 computed")) << again.out;
+}
+
+// A folder or a FIFO in an entry's place is a bad entry like garbage: the job succeeds (before,
+// a folder failed it with "basic_filebuf::underflow error reading the file: Is a directory" and a
+// FIFO made it wait forever holding the cache's lock).
+TEST_F(MergeCacheCliTest, AFolderOrAFifoInAnEntrysPlaceIsRebuilt) {
+  const fs::path cache = dir_ / "cache";
+  ASSERT_EQ(Merge(dir_ / "out", "--cache " + ShellQuote(cache)).exit_code, 0);
+  fs::path entry;
+  for (const auto& f : fs::directory_iterator(cache)) {
+    if (f.path().extension() == ".entry") entry = f.path();
+  }
+  ASSERT_FALSE(entry.empty());
+  for (const std::string what : {"folder", "fifo"}) {
+    fs::remove(entry);
+    if (what == "folder") {
+      fs::create_directory(entry);
+    } else {
+      ASSERT_EQ(::mkfifo(entry.c_str(), 0644), 0);
+    }
+    const auto rebuilt = Merge(dir_ / "out", "--cache " + ShellQuote(cache));
+    ASSERT_EQ(rebuilt.exit_code, 0) << what << ": " << rebuilt.both();
+    EXPECT_TRUE(
+        Contains(rebuilt.out, "pairs: 0 from the cache, 1 computed; 1 bad cache entries rebuilt"))
+        << what << ": " << rebuilt.out;
+    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(entry))) << what;
+  }
+}
+
+// 24 maps make 276 pairs, more than the smallest bound (1 MiB: ~250 entries of a 4 KiB block):
+// the job keeps them all (its re-run takes every pair from the cache) and warns.
+TEST_F(MergeCacheCliTest, ABoundBelowTheJobsPairsKeepsThemAndWarns) {
+  const std::string yaml = ReadFile(dir_ / "ex" / "robot_a.yaml");
+  const std::string origin = "origin: [0, 0, 0]";
+  ASSERT_NE(yaml.find(origin), std::string::npos) << yaml;
+  fs::copy_file(dir_ / "ex" / "robot_a.pgm", dir_ / "robot_a.pgm");
+  std::string maps;
+  for (int k = 1; k <= 24; ++k) {  // one image, 24 origins: 24 different maps to the cache
+    std::string shifted = yaml;
+    shifted.replace(shifted.find(origin), origin.size(),
+                    "origin: [" + std::to_string(k) + ", 0, 0]");
+    const fs::path path = dir_ / ("r" + std::to_string(k) + ".yaml");
+    WriteFile(path, shifted);
+    maps += " " + ShellQuote(path);
+  }
+  const fs::path cache = dir_ / "cache";
+  const std::string merge = "merge --quiet --out " + ShellQuote(dir_ / "out") + " --cache " +
+                            ShellQuote(cache) + " --cache-max-mb 1" + maps;
+  const auto first = Fleetmerge(merge);
+  ASSERT_EQ(first.exit_code, 0) << first.both();
+  EXPECT_TRUE(Contains(first.out, "pairs: 0 from the cache, 276 computed\n")) << first.out;
+  EXPECT_TRUE(Contains(first.err,
+                       "fleetmerge: warning: job 'merge': the cache's size bound (1 MiB, "
+                       "--cache-max-mb / cache_max_mb) is below this job's 276 pairs"))
+      << first.err;
+  const json report = json::parse(ReadFile(dir_ / "out" / "report.json"));
+  EXPECT_EQ(report["cache"]["bound_below_job"], true);
+  EXPECT_EQ(report["cache"]["entries_in_use"], 276);
+  EXPECT_EQ(report["cache"]["entries_evicted"], 0);
+  const auto again = Fleetmerge(merge);
+  EXPECT_TRUE(Contains(again.out, "pairs: 276 from the cache, 0 computed\n")) << again.out;
+}
+
+// `--cache ""` is an error naming the flag, not a silent way to turn the cache off (a job file's
+// too).
+TEST_F(MergeCacheCliTest, AnEmptyCacheNameIsAnError) {
+  const auto run = Merge(dir_ / "out", "--cache ''");
+  EXPECT_EQ(run.exit_code, 1) << run.both();
+  EXPECT_TRUE(Contains(run.err, "--cache: empty folder name")) << run.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// A job waiting for the cache says so even with --quiet (a quiet cron job must not stall without
+// a word), and names a map list's job shortly; --lock-wait bounds the wait for the cache too.
+TEST_F(MergeCacheCliTest, AQuietJobStillSaysItWaitsForTheCache) {
+  const fs::path cache = dir_ / "cache";
+  fs::create_directories(cache);
+  {
+    FolderLock held(cache, "job 'test holder'", 0, "cache folder", {},
+                    LockFilePlace::kInsideFolder);
+    const auto run = Merge(dir_ / "out", "--lock-wait 0.5 --cache " + ShellQuote(cache));
+    EXPECT_EQ(run.exit_code, 1) << run.both();
+    EXPECT_TRUE(Contains(run.err, "merge: waiting up to 0.5 s for cache folder " + cache.string() +
+                                      ", in use by job 'test holder' (pid "))
+        << run.err;
+    EXPECT_TRUE(Contains(run.err, "is in use by job 'test holder'")) << run.err;
+  }
+  EXPECT_TRUE(Contains(Fleetmerge("merge --help").out, "same output folder or cache folder"));
 }
 
 }  // namespace

@@ -82,6 +82,22 @@ TEST(FolderLock, LockFileBesideTheFolderNamesTheHolder) {
   EXPECT_EQ(ErrorOf([&] { FolderLock again(dir / "out", "job 'b'", 0); }), "");
 }
 
+// A folder has one lock however it is spelled: through a link to it (or to a folder not made
+// yet), or through a link among its parents.
+TEST(FolderLock, ALinkToTheFolderSharesItsLock) {
+  const fs::path dir = ft::MakeTempDir("folder_lock_link");
+  fs::create_directories(dir / "real");
+  fs::create_directory_symlink("real", dir / "link");
+  fs::create_directory_symlink(dir / "later", dir / "to_missing");
+  fs::create_directory_symlink(dir, dir / "parent_link");
+  EXPECT_EQ(FolderLockPath(dir / "link"), dir / ".real.fleetmerge-lock");
+  EXPECT_EQ(FolderLockPath(dir / "parent_link" / "link/"), dir / ".real.fleetmerge-lock");
+  EXPECT_EQ(FolderLockPath(dir / "to_missing"), dir / ".later.fleetmerge-lock");
+  FolderLock held(dir / "real", "job 'real'", 0);
+  const std::string error = ErrorOf([&] { FolderLock other(dir / "link", "job 'link'", 0); });
+  EXPECT_NE(error.find("is in use by job 'real'"), std::string::npos) << error;
+}
+
 TEST(FolderLock, WaiterGetsTheLockWhenTheHolderReleasesIt) {
   const fs::path dir = ft::MakeTempDir("folder_lock_wait");
   std::optional<FolderLock> first(std::in_place, dir / "out", "job 'first'", 0);

@@ -213,6 +213,16 @@ TEST_F(JobFileTest, EnumsTakeEveryValue) {
       SamplingMode::kAll);
 }
 
+// Without `seed:` a job seeds sampling as `merge --out` and Python do (--seed 0: Hough 0,
+// spectra 1), also after a `sampling` spec.
+TEST_F(JobFileTest, TheDefaultSeedIsTheCommandLines) {
+  for (const std::string extra : {"", "translation: {sampling: \"random:0.5\"}\n"}) {
+    const HypothesisOptions h = Load(Minimal(extra))[0].options.pair.hypotheses;
+    EXPECT_EQ(h.hough_sampling.seed, 0u) << extra;
+    EXPECT_EQ(h.spectra_sampling.seed, 1u) << extra;
+  }
+}
+
 TEST_F(JobFileTest, RangeEndsAreAccepted) {
   const FleetOptions o =
       Load(Minimal("hough: {n_theta: 3600, rho_step: 0.1}\n"
@@ -362,6 +372,9 @@ TEST_F(JobFileTest, CacheIsAFolderRelativeToTheJobFileWithASizeBound) {
   ExpectError(Minimal("cache: plain\n"), 4, "cache",
               "cache folder '" + (dir_ / "plain").string() + "' exists and is not a folder");
   ExpectError(Minimal("cache_max_mb: 0\n"), 4, "cache_max_mb", "expected");
+  // As --cache-max-mb without --cache: a bound on no cache is refused, not ignored.
+  ExpectError(Minimal("cache_max_mb: 64\n"), 4, "cache_max_mb",
+              "a size bound without a cache: give the job a 'cache' folder");
   ExpectError(Minimal("cache: [a, b]\n"), 4, "cache", "expected a cache folder");
 }
 

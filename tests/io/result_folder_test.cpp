@@ -51,6 +51,27 @@ TEST(ResultFolder, NewFolderThenReplacedBySameJob) {
   EXPECT_EQ(Entries(dir / "sub"), std::vector<std::string>{"out"}) << "no staging left";
 }
 
+// `--out link` where link points to a folder: the set goes into the folder and the link stays
+// (it was replaced by a folder of its own, leaving its target as it was); the lock is the target's.
+TEST(ResultFolder, AnOutputFolderNamedThroughALinkIsTheLinksTarget) {
+  const fs::path dir = ft::MakeTempDir("result_folder_link");
+  fs::create_directories(dir / "target");
+  fs::create_directory_symlink("target", dir / "link");
+  fs::create_directory_symlink(dir / "later", dir / "to_missing");  // created by the first run
+  for (const char* name : {"link", "to_missing"}) {
+    PublishSet(dir / name, "job A", "report.json", "first");
+    PublishSet(dir / name, "job A", "report.json", "second");
+    EXPECT_TRUE(fs::is_symlink(dir / name)) << name;
+    EXPECT_EQ(ft::ReadFile(dir / name / "report.json"), "second") << name;
+  }
+  EXPECT_EQ(ft::ReadFile(dir / "target" / "report.json"), "second");
+  EXPECT_EQ(ft::ReadFile(dir / "later" / "report.json"), "second");
+  ResultFolder held(dir / "target", "job A", false, {}, 0);
+  const std::string error =
+      ErrorOf([&] { ResultFolder other(dir / "link", "job A", false, {}, 0); });
+  EXPECT_NE(error.find("is in use by job A"), std::string::npos) << error;
+}
+
 // A set with a subfolder (merged_bag/): the manifest lists its files by relative path, the set
 // is replaced as a whole, and a file the user put inside the subfolder stops the replacement.
 TEST(ResultFolder, SubfolderFilesAreListedAndGuarded) {

@@ -241,6 +241,25 @@ TEST_F(PairCacheTest, PairOptionsThatChangeHypothesesMissTheCache) {
   EXPECT_EQ(decisions.pairs_cached, 3);
 }
 
+// The seed picks the points of random sampling and nothing else: with every point (the default)
+// or every k-th, jobs of different seeds (a job file's and the command line's) share entries.
+TEST(PairOptionsDigest, TheSeedCountsOnlyForRandomSampling) {
+  for (SamplingOptions HypothesisOptions::*sampling :
+       {&HypothesisOptions::hough_sampling, &HypothesisOptions::spectra_sampling}) {
+    const auto digest = [&](SamplingMode mode, std::uint32_t seed) {
+      PairOptions o;
+      (o.hypotheses.*sampling).mode = mode;
+      (o.hypotheses.*sampling).fraction = 0.5;
+      (o.hypotheses.*sampling).step = 2;
+      (o.hypotheses.*sampling).seed = seed;
+      return PairOptionsDigest(o, kVersion);
+    };
+    EXPECT_EQ(digest(SamplingMode::kAll, 0), digest(SamplingMode::kAll, 7));
+    EXPECT_EQ(digest(SamplingMode::kEveryKth, 0), digest(SamplingMode::kEveryKth, 7));
+    EXPECT_NE(digest(SamplingMode::kRandomFraction, 0), digest(SamplingMode::kRandomFraction, 7));
+  }
+}
+
 TEST(PairOptionsDigest, ChangesWithEveryRefinementSetting) {
   const PairOptions defaults;
   const ContentDigest digest = PairOptionsDigest(defaults, kVersion);
@@ -256,6 +275,26 @@ TEST(PairOptionsDigest, ChangesWithEveryRefinementSetting) {
     EXPECT_TRUE(changed([](LocalAlignmentOptions& a) { a.loss_scale_cells *= 2.0; }));
     EXPECT_TRUE(changed([](LocalAlignmentOptions& a) { a.function_tolerance *= 0.1; }));
   }
+}
+
+// A bound below one job's pairs keeps them all (the job's re-run takes them from the cache) and
+// reports it, instead of evicting the entries the job just wrote.
+TEST_F(PairCacheTest, ABoundBelowTheJobsPairsKeepsThemAll) {
+  CacheFolderOptions tiny;
+  tiny.max_bytes = 1;
+  PairCacheStats first, again;
+  for (PairCacheStats* stats : {&first, &again}) {
+    PairCache cache(dir_, kVersion, tiny);
+    MergeFleet(FirstMaps(fleet_, 3), 0, options_, {}, &cache);
+    *stats = cache.stats();
+  }
+  EXPECT_EQ(first.pairs_computed, 3);
+  EXPECT_EQ(first.evicted, 0);
+  EXPECT_EQ(first.entries_in_use, 3);
+  EXPECT_TRUE(first.over_bound);
+  EXPECT_EQ(again.pairs_cached, 3);
+  EXPECT_EQ(again.pairs_computed, 0);
+  EXPECT_TRUE(again.over_bound);
 }
 
 TEST_F(PairCacheTest, TheCacheIsReleasedOnceThePairsAreDone) {

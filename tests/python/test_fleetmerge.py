@@ -115,6 +115,14 @@ def test_merge_with_a_cache_reuses_the_pairs_with_the_same_result(tmp_path):
         fleetmerge.merge(paths, cache_dir=tmp_path / "file")
 
 
+def test_pair_refuses_a_cache_it_would_ignore(tmp_path):
+    a = fleetmerge.Map(np.zeros((4, 4), dtype=np.int8), 0.05)
+    for key, value in (("cache_dir", tmp_path / "cache"), ("cache_max_mb", 16)):
+        with pytest.raises(ValueError, match=f"pair\\(\\) has no cache: '{key}' is an option of merge"):
+            fleetmerge.pair(a, a, **{key: value})
+    assert not (tmp_path / "cache").exists()
+
+
 @needs_maps
 def test_merge_of_maps_in_memory_places_them_as_from_files():
     names = ["robotis_corridor_run1", "robotis_corridor_run2", "robotis_corridor_run3"]

@@ -174,7 +174,8 @@ struct PairHypotheses {
 // The hypotheses that overlay map b on map a, best first, at most options.hypotheses of them:
 // what `fleetmerge pair --json -n N a b` prints. Ranked by their evidence among those tied on
 // omega (docs/method.md). Maps of different resolutions are compared at the finer one. Empty
-// when a map has no occupied cell.
+// when a map has no occupied cell. Pair has no cache: a non-empty options.cache_dir is
+// std::invalid_argument.
 PairHypotheses Pair(const Map& a, const Map& b, const Options& options = {});
 
 // Where one map went.
