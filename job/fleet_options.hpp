@@ -15,7 +15,8 @@
 
 namespace fleetmerge {
 
-// 1 GiB: a pair's entry takes about 300 bytes, so several million pairs (2000 maps' worth).
+// 1 GiB: a pair's entry (~330 bytes) takes a 4 KiB filesystem block, so about 260,000 pairs
+// (720 maps' worth; configs/README.md).
 inline constexpr std::int64_t kDefaultCacheMaxMb = 1024;
 inline constexpr std::int64_t kLargestCacheMaxMb = std::int64_t(1) << 40;  // bytes fit an int64
 
