@@ -194,9 +194,15 @@ MapPoseOption ParseMapPoseOption(const std::string& flag, const std::string& val
   if (text.empty() || text.back() == ',') throw fail("a number is missing");
   std::istringstream numbers(text);
   for (std::string word; std::getline(numbers, word, ',');) {
+    // Spaces around a number are fine ("1, 2, 3", as a shell user quotes it); hexadecimal, which
+    // strtod would take, is not a pose.
+    const std::size_t first = word.find_first_not_of(' ');
+    word = first == std::string::npos ? ""
+                                      : word.substr(first, word.find_last_not_of(' ') - first + 1);
     char* end = nullptr;
     const double number = std::strtod(word.c_str(), &end);
-    if (word.empty() || end != word.c_str() + word.size() || !std::isfinite(number)) {
+    if (word.empty() || end != word.c_str() + word.size() || !std::isfinite(number) ||
+        word.find_first_of("xX") != std::string::npos) {
       throw fail("'" + word + "' is not a finite number");
     }
     option.numbers.push_back(number);

@@ -389,6 +389,9 @@ TEST_F(MergeCliTest, BadFixedOrInitialPoseIsRefusedBeforeAnyOutput) {
       {"--initial-pose robot_b=1,2,0,-0.5,0.1", "the sigmas (metres, radians) must be > 0"},
       {"--initial-pose robot_b", "no pose given"},
       {"--fixed robot_a=1,2,inf", "'inf' is not a finite number"},
+      {"--fixed robot_a=0x10,2,0", "'0x10' is not a finite number"},
+      {"--initial-pose robot_b=1,2,90", "YAW 90 rad looks like degrees (90 deg is 1.5708 rad)"},
+      {"--initial-pose robot_b=1,2,0,0.5,10", "SIGMA_RAD 10 rad looks like degrees"},
       {"--fixed robot_a --initial-pose robot_a=1,2,0", "map 'robot_a' is already given"},
       {"--fixed robot_b --reference robot_a", "the reference is the first fixed map, 'robot_b'"},
   };
