@@ -203,16 +203,49 @@ Map::Map(std::vector<std::int8_t> data, int width, int height, double resolution
   }
 }
 
-void Map::set_fixed(bool fixed, Pose2D pose) {
+namespace {
+
+// The checks of Map::set_fixed (with fixed) and Options::fixed.
+void CheckFixedPose(const std::string& name, const Pose2D& pose) {
   if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.yaw)) {
-    throw std::invalid_argument("map '" + name_ + "': a fixed map's pose must be finite [x, y, " +
+    throw std::invalid_argument("map '" + name + "': a fixed map's pose must be finite [x, y, " +
                                 "yaw] (m, m, rad)");
   }
   if (std::abs(pose.yaw) > kMaxYawRad) {
-    throw std::invalid_argument("map '" + name_ + "': a fixed map's pose yaw " +
+    throw std::invalid_argument("map '" + name + "': a fixed map's pose yaw " +
                                 YawLooksLikeDegrees(pose.yaw) +
                                 "; expected radians, at most 2 pi in magnitude");
   }
+}
+
+// The checks of Map::set_initial_pose and Options::initial_poses.
+void CheckInitialPose(const std::string& name, const Pose2D& pose, double sigma_m,
+                      double sigma_rad) {
+  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.yaw)) {
+    throw std::invalid_argument("map '" + name +
+                                "': an initial pose must be finite [x, y, yaw] (m, m, rad)");
+  }
+  if (!std::isfinite(sigma_m) || !(sigma_m > 0.0) || !std::isfinite(sigma_rad) ||
+      !(sigma_rad > 0.0)) {
+    throw std::invalid_argument("map '" + name + "': an initial pose's sigmas [" +
+                                std::to_string(sigma_m) + " m, " + std::to_string(sigma_rad) +
+                                " rad] must be finite and > 0");
+  }
+  if (std::abs(pose.yaw) > kMaxYawRad) {
+    throw std::invalid_argument("map '" + name + "': an initial pose's yaw " +
+                                YawLooksLikeDegrees(pose.yaw) +
+                                "; expected radians, at most 2 pi in magnitude");
+  }
+  if (sigma_rad > kMaxYawSigmaRad) {
+    throw std::invalid_argument("map '" + name + "': an initial pose's yaw sigma " +
+                                YawLooksLikeDegrees(sigma_rad) + "; expected radians, at most pi");
+  }
+}
+
+}  // namespace
+
+void Map::set_fixed(bool fixed, Pose2D pose) {
+  CheckFixedPose(name_, pose);
   if (!fixed && (pose.x != 0.0 || pose.y != 0.0 || pose.yaw != 0.0)) {
     // As a job file refuses `pose` without `fixed: true`: it would be ignored.
     throw std::invalid_argument("map '" + name_ +
@@ -225,25 +258,7 @@ void Map::set_fixed(bool fixed, Pose2D pose) {
 }
 
 void Map::set_initial_pose(Pose2D pose, double sigma_m, double sigma_rad) {
-  if (!std::isfinite(pose.x) || !std::isfinite(pose.y) || !std::isfinite(pose.yaw)) {
-    throw std::invalid_argument("map '" + name_ +
-                                "': an initial pose must be finite [x, y, yaw] (m, m, rad)");
-  }
-  if (!std::isfinite(sigma_m) || !(sigma_m > 0.0) || !std::isfinite(sigma_rad) ||
-      !(sigma_rad > 0.0)) {
-    throw std::invalid_argument("map '" + name_ + "': an initial pose's sigmas [" +
-                                std::to_string(sigma_m) + " m, " + std::to_string(sigma_rad) +
-                                " rad] must be finite and > 0");
-  }
-  if (std::abs(pose.yaw) > kMaxYawRad) {
-    throw std::invalid_argument("map '" + name_ + "': an initial pose's yaw " +
-                                YawLooksLikeDegrees(pose.yaw) +
-                                "; expected radians, at most 2 pi in magnitude");
-  }
-  if (sigma_rad > kMaxYawSigmaRad) {
-    throw std::invalid_argument("map '" + name_ + "': an initial pose's yaw sigma " +
-                                YawLooksLikeDegrees(sigma_rad) + "; expected radians, at most pi");
-  }
+  CheckInitialPose(name_, pose, sigma_m, sigma_rad);
   initial_pose_ = pose;
   initial_pose_sigma_m_ = sigma_m;
   initial_pose_sigma_rad_ = sigma_rad;
@@ -296,6 +311,9 @@ PairHypotheses Pair(const Map& a, const Map& b, const Options& options) {
 MergeResult Merge(const std::vector<Map>& maps, const Options& options,
                   const std::string& out_dir) {
   Require(!maps.empty(), "merge needs at least one map");
+  Require(options.fixed.empty() && options.initial_poses.empty(),
+          "options.fixed and options.initial_poses name map files (MergeFiles); a Map carries "
+          "its own: set_fixed, set_initial_pose");
   const auto start = std::chrono::steady_clock::now();
   Job job;
   job.name = "merge";
@@ -339,12 +357,56 @@ MergeResult Merge(const std::vector<Map>& maps, const Options& options,
   return ToResult(job, RunLoadedJob(job, loaded, {}, MillisecondsSince(start), run));
 }
 
+namespace {
+
+// Options::fixed and Options::initial_poses on a map list's job, by name, as `merge --fixed` and
+// `--initial-pose` give them.
+void ApplyNamedPoses(const Options& options, Job& job) {
+  const auto named = [&job](const std::string& name, const char* key) -> JobMap& {
+    std::string names;
+    for (JobMap& map : job.maps) {
+      if (map.name == name) return map;
+      names += (names.empty() ? "'" : ", '") + map.name + "'";
+    }
+    throw std::invalid_argument(std::string("options.") + key + ": no map is named '" + name +
+                                "' (the maps: " + names + ")");
+  };
+  for (const auto& [name, pose] : options.fixed) {
+    CheckFixedPose(name, pose);
+    JobMap& map = named(name, "fixed");
+    map.fixed = true;
+    map.T_merged_map = Pose2(pose.x, pose.y, pose.yaw);
+  }
+  for (const auto& [name, prior] : options.initial_poses) {
+    CheckInitialPose(name, prior.pose, prior.sigma_m, prior.sigma_rad);
+    JobMap& map = named(name, "initial_poses");
+    if (map.fixed) {
+      throw std::invalid_argument("map '" + name +
+                                  "' is in options.fixed and options.initial_poses: a fixed "
+                                  "map's pose is exact; give it in one of them");
+    }
+    map.prior = PosePrior{Pose2(prior.pose.x, prior.pose.y, prior.pose.yaw), prior.sigma_m,
+                          prior.sigma_rad};
+  }
+  if (const JobMap* first_fixed = FirstFixedMap(job.maps)) {
+    if (!options.reference.empty() && options.reference != first_fixed->name) {
+      throw std::invalid_argument("reference '" + options.reference +
+                                  "': with fixed maps the reference is the first fixed map, '" +
+                                  first_fixed->name + "'; leave it empty");
+    }
+    job.reference = first_fixed->name;
+  }
+}
+
+}  // namespace
+
 MergeResult MergeFiles(const std::vector<std::string>& paths, const Options& options,
                        const std::string& out_dir) {
   Require(!paths.empty(), "merge needs at least one map");
   const FleetOptions fleet_options = ToFleetOptions(options);
   const std::vector<std::filesystem::path> files(paths.begin(), paths.end());
-  const Job job = MapListJob(files, out_dir, Reference(options), fleet_options);
+  Job job = MapListJob(files, out_dir, Reference(options), fleet_options);
+  ApplyNamedPoses(options, job);
   JobRunOptions run;
   run.write = !out_dir.empty();
   return ToResult(job, RunJob(job, run));

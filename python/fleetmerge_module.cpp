@@ -273,7 +273,33 @@ PYBIND11_MODULE(_fleetmerge, m) {
       .def_readwrite("octree_band_min", &fleetmerge::Options::octree_band_min)
       .def_readwrite("octree_band_max", &fleetmerge::Options::octree_band_max)
       .def_readwrite("cache_dir", &fleetmerge::Options::cache_dir)
-      .def_readwrite("cache_max_mb", &fleetmerge::Options::cache_max_mb);
+      .def_readwrite("cache_max_mb", &fleetmerge::Options::cache_max_mb)
+      // merge(paths, fixed={name: (x, y, yaw)}, initial_poses={name: (x, y, yaw[, m, rad])}):
+      // fleetmerge/__init__.py passes each entry here.
+      .def("_fix",
+           [](fleetmerge::Options& o, const std::string& name, const py::object& pose) {
+             o.fixed[name] = PoseFrom(pose, "fixed['" + name + "']");
+           })
+      .def("_initial_pose",
+           [](fleetmerge::Options& o, const std::string& name, const py::object& value) {
+             const std::string what = "initial_poses['" + name + "']";
+             if (!py::isinstance<py::sequence>(value) || py::isinstance<py::str>(value) ||
+                 (py::len(value) != 3 && py::len(value) != 5)) {
+               ValueError(what + " must be (x, y, yaw) or (x, y, yaw, metres, radians)");
+             }
+             const auto seq = py::reinterpret_borrow<py::sequence>(value);
+             fleetmerge::InitialPose prior;
+             prior.pose = PoseFrom(py::make_tuple(seq[0], seq[1], seq[2]), what);
+             if (seq.size() == 5) {
+               try {
+                 prior.sigma_m = seq[3].cast<double>();
+                 prior.sigma_rad = seq[4].cast<double>();
+               } catch (const py::cast_error&) {
+                 ValueError(what + "'s sigmas (metres, radians) must be numbers");
+               }
+             }
+             o.initial_poses[name] = prior;
+           });
 
   py::class_<fleetmerge::MergeResult>(m, "MergeResult")
       .def_readonly("report_json", &fleetmerge::MergeResult::report_json)

@@ -92,15 +92,25 @@ class MergeResult:
                 f"{len(self.report['components'])} component(s), {len(self.merged)} merged>")
 
 
-def merge(maps, out=None, **options):
+def merge(maps, out=None, fixed=None, initial_poses=None, **options):
     """Merges a fleet's maps (Maps or paths). All paths: exactly `fleetmerge merge --out OUT
     paths...` (maps named by file stem, octrees with their merged .bt). With out=DIR the usual
     result set (merged maps, previews, report.json) is written there, replaced as a whole.
+    With paths, fixed={name: (x, y, yaw)} and initial_poses={name: (x, y, yaw) or (x, y, yaw,
+    metres, radians)} give fixed maps and known start poses by map name, as `merge --fixed` and
+    `--initial-pose` do; a Map carries its own (fixed, pose, initial_pose, initial_pose_sigma).
     Options are keywords: threads, omega_threshold, min_overlap_cells, min_wall_agreement,
     min_bridge_wall_agreement, hypotheses, resolution, fusion, reference, refine, translation, max_map_cells, octree_band_min/max,
     cache_dir (keep pairs' hypotheses there and reuse them: `merge --cache`), cache_max_mb."""
     maps = list(maps)
     o = _options(options)
+    for key, given in (("fixed", fixed), ("initial_poses", initial_poses)):
+        if given is not None and not isinstance(given, dict):
+            raise ValueError(f"{key} must be a dict {{map name: pose}}, got {type(given).__name__}")
+    for name, pose in (fixed or {}).items():
+        o._fix(name, pose)
+    for name, value in (initial_poses or {}).items():
+        o._initial_pose(name, value)
     out_dir = "" if out is None else _path(out, "out")
     if maps and all(not isinstance(m, Map) for m in maps):
         native = _fleetmerge.merge_files([_path(m, "maps[]") for m in maps], o, out_dir)

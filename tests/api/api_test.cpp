@@ -108,6 +108,52 @@ TEST(Api, AMapThatPairsWithNoneIsPlacedAtItsInitialPose) {
   EXPECT_THROW(fleetmerge::Merge({base, robot}), std::invalid_argument);
 }
 
+// MergeFiles takes fixed maps and initial poses by map name, as `merge --fixed` and
+// `--initial-pose`; Merge takes them from its Maps and refuses them in Options.
+TEST(Api, MapFilesTakeFixedMapsAndInitialPosesByName) {
+  const std::filesystem::path dir = fleetmerge::testing::MakeTempDir("api_named_poses");
+  fleetmerge::SaveMap(fleetmerge::Map({0, 100, 0, 100}, 2, 2, 0.05, {}, "base"),
+                      (dir / "base.yaml").string());
+  fleetmerge::SaveMap(fleetmerge::Map({100, 0, 100, 0}, 2, 2, 0.05, {}, "robot"),
+                      (dir / "robot.yaml").string());
+  const std::vector<std::string> files = {(dir / "base.yaml").string(),
+                                          (dir / "robot.yaml").string()};
+  fleetmerge::Options options;
+  options.fixed["base"] = {1.5, -2.0, 0.3};
+  options.initial_poses["robot"] = {{4.0, 1.0, -0.2}, 0.3, 0.1};
+  const fleetmerge::MergeResult result = fleetmerge::MergeFiles(files, options);
+  ASSERT_EQ(result.maps.size(), 2u);
+  EXPECT_EQ(result.maps[0].placed_by, "fixed");
+  EXPECT_NEAR(result.maps[0].pose.x, 1.5, 1e-12);
+  EXPECT_EQ(result.maps[1].placed_by, "prior");  // too small to pair: at its initial pose
+  EXPECT_NEAR(result.maps[1].pose.x, 4.0, 1e-9);
+  EXPECT_NEAR(result.maps[1].pose.yaw, -0.2, 1e-9);
+  EXPECT_NE(result.report_json.find("\"initial_pose_sigma\": [\n"), std::string::npos);
+  const auto refused = [&](const fleetmerge::Options& bad, const std::string& what) {
+    try {
+      fleetmerge::MergeFiles(files, bad);
+      ADD_FAILURE() << "no error for " << what;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  };
+  fleetmerge::Options bad = options;
+  bad.fixed["robot9"] = {};
+  refused(bad, "options.fixed: no map is named 'robot9' (the maps: 'base', 'robot')");
+  bad = options;
+  bad.initial_poses["base"] = {};
+  refused(bad, "map 'base' is in options.fixed and options.initial_poses");
+  bad = options;
+  bad.initial_poses["robot"].pose.yaw = 90.0;
+  refused(bad, "90 rad looks like degrees");
+  bad = options;
+  bad.reference = "robot";
+  refused(bad, "with fixed maps the reference is the first fixed map, 'base'");
+  EXPECT_THROW(
+      fleetmerge::Merge({fleetmerge::LoadMap(files[0]), fleetmerge::LoadMap(files[1])}, options),
+      std::invalid_argument);
+}
+
 TEST(Api, EmptyMapAndBadOptionsAreInvalidArguments) {
   const fleetmerge::Map empty;
   const fleetmerge::Map map({0, 100, 0, 100}, 2, 2, 0.05);

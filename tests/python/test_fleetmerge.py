@@ -99,6 +99,32 @@ def test_merge_equals_cli_report(tmp_path):
 
 
 @needs_maps
+@needs_maps
+def test_merge_of_files_takes_fixed_maps_and_initial_poses_by_name(tmp_path):
+    # As `merge --fixed NAME=... --initial-pose NAME=...`: the same report (configs/
+    # site_with_priors.yaml's poses: run4 overlaps nobody and is placed at its prior).
+    paths = [real(f"robotis_corridor_run{k}") for k in (1, 2, 3, 4)]
+    cli("merge", "--quiet", "--out", str(tmp_path / "cli"), *paths,
+        "--fixed", "robotis_corridor_run1=10,5,0",
+        "--initial-pose", "robotis_corridor_run2=10.3,4.7,-0.1",
+        "--initial-pose", "robotis_corridor_run4=10,5,0,1.0,0.35")
+    expected = json.loads((tmp_path / "cli" / "report.json").read_text())
+    result = fleetmerge.merge(paths, fixed={"robotis_corridor_run1": (10, 5, 0)},
+                              initial_poses={"robotis_corridor_run2": (10.3, 4.7, -0.1),
+                                             "robotis_corridor_run4": (10, 5, 0, 1.0, 0.35)})
+    assert without_timing(result.report) == without_timing(expected)
+    assert [m["placed_by"] for m in expected["maps"]] == ["fixed", "pairs", "pairs", "prior"]
+    with pytest.raises(ValueError, match="no map is named 'run9'"):
+        fleetmerge.merge(paths, fixed={"run9": (0, 0, 0)})
+    with pytest.raises(ValueError, match=r"must be \(x, y, yaw\) or \(x, y, yaw, metres"):
+        fleetmerge.merge(paths, initial_poses={"robotis_corridor_run2": (1, 2)})
+    with pytest.raises(ValueError, match="fixed must be a dict"):
+        fleetmerge.merge(paths, fixed=[(0, 0, 0)])
+    with pytest.raises(ValueError, match="a Map carries its own"):
+        fleetmerge.merge([fleetmerge.load_map(p) for p in paths[:2]],
+                         fixed={"robotis_corridor_run1": (0, 0, 0)})
+
+
 def test_merge_with_a_cache_reuses_the_pairs_with_the_same_result(tmp_path):
     paths = [real(f"robotis_corridor_run{k}") for k in (1, 2, 3)]
     plain = fleetmerge.merge(paths)

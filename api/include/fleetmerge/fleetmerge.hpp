@@ -17,6 +17,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
@@ -112,6 +113,13 @@ Map LoadMap(const std::string& path);
 // each atomically.
 void SaveMap(const Map& map, const std::string& yaml_path);
 
+// A known start pose given by map name (Options::initial_poses): as Map::set_initial_pose.
+struct InitialPose {
+  Pose2D pose;
+  double sigma_m = Map::kDefaultInitialPoseSigmaM;
+  double sigma_rad = Map::kDefaultInitialPoseSigmaRad;
+};
+
 // Parameters of Pair and Merge. Defaults are the command line's.
 struct Options {
   int hypotheses = 4;       // per pair: Pair returns them (`pair -n`), Merge keeps them (job key
@@ -138,6 +146,11 @@ struct Options {
   // Results are the same with and without it.
   std::string cache_dir;
   std::int64_t cache_max_mb = 1024;
+  // MergeFiles: fixed maps with their poses and known start poses, by map name, as `merge
+  // --fixed NAME=x,y,yaw --initial-pose NAME=x,y,yaw[,m,rad]` (a bag's or octree's maps too).
+  // Merge of Maps takes them from each Map (set_fixed, set_initial_pose) and refuses these.
+  std::map<std::string, Pose2D> fixed;
+  std::map<std::string, InitialPose> initial_poses;
 };
 
 // One transformation of b's map frame into a's: the pose of b's frame in a's frame, its
@@ -222,7 +235,10 @@ MergeResult Merge(const std::vector<Map>& maps, const Options& options = {},
                   const std::string& out_dir = "");
 
 // Merges map files (map_server YAMLs, octrees) exactly as `fleetmerge merge --out DIR files...`
-// does, octrees included (merged_<c>.bt). Maps are named after their file stems.
+// does, octrees included (merged_<c>.bt). Maps are named after their file stems; options.fixed
+// and options.initial_poses name them (std::invalid_argument for a name that is no map's, a
+// map in both, a pose or sigma set_fixed or set_initial_pose would refuse, or a reference
+// other than the first fixed map).
 MergeResult MergeFiles(const std::vector<std::string>& paths, const Options& options = {},
                        const std::string& out_dir = "");
 
