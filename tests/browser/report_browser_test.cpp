@@ -652,8 +652,24 @@ TEST(PriorPlacedMapInBrowser, IsListedAndRingedWhereItsPosePutsIt) {
   for (std::size_t k = 0; k < maps.size(); ++k) {
     const std::string name = listed->at("legend")[k], text = listed->at("legend_text")[k];
     EXPECT_EQ(text.find("(placed by prior)") != std::string::npos, name == "run4") << text;
+    EXPECT_EQ(text.find("(fixed)") != std::string::npos, name == "site") << text;
   }
   EXPECT_TRUE(dom.at("unmerged").empty()) << dom.at("unmerged").dump();
+  // The job's table gives what placed each map and its known pose (the job file's values).
+  const json& rows = dom.at("input_rows");
+  ASSERT_EQ(rows.size(), 4u) << rows.dump();
+  const auto last_two = [&](int m) {
+    const json& row = rows.at(m);
+    return std::make_pair(row.at(row.size() - 2).get<std::string>(),
+                          row.at(row.size() - 1).get<std::string>());
+  };
+  EXPECT_EQ(last_two(0), std::make_pair(std::string("fixed"), std::string("fixed (its pose)")));
+  EXPECT_EQ(last_two(1).first, "pairs");
+  EXPECT_EQ(last_two(1).second,
+            "initial_pose x 10.300 m, y 4.700 m, yaw -5.73\u00b0 (sigma 0.50 m, 10.0\u00b0)");
+  EXPECT_EQ(last_two(3).first, "prior");
+  EXPECT_EQ(last_two(3).second,
+            "initial_pose x 10.000 m, y 5.000 m, yaw 0.00\u00b0 (sigma 1.00 m, 20.1\u00b0)");
 
   // The viewer as loaded: the dashed ring around run4's node, where report.json's pose carries
   // the centre of run4's known cells; none around the maps their pairs place; none 1.5 m away.

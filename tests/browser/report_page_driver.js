@@ -227,6 +227,8 @@ listeners.push((m) => {
     return {
       title: document.title,
       input_maps: [...document.querySelectorAll('#input-table tr[data-map]')].map(r => r.dataset.map),
+      input_rows: [...document.querySelectorAll('#input-table tr[data-map]')].map(r =>
+        [...r.cells].map(c => c.textContent.trim())),
       pairs: [...document.querySelectorAll('#pair-table tbody tr')].map(r => ({
         a: r.dataset.a, b: r.dataset.b, decision: r.dataset.decision,
         cells: [...r.cells].map(c => c.textContent.trim())})),
