@@ -202,7 +202,8 @@ PYBIND11_MODULE(_fleetmerge, m) {
           "a known start pose (x, y, yaw): the map frame in the site (merged) frame, or None")
       .def_property(
           "initial_pose_sigma",
-          [](const fleetmerge::Map& map) {
+          [](const fleetmerge::Map& map) -> py::object {
+            if (!map.initial_pose()) return py::none();  // as initial_pose: no prior, no sigmas
             return py::make_tuple(map.initial_pose_sigma_m(), map.initial_pose_sigma_rad());
           },
           [](fleetmerge::Map& map, const py::object& sigma) {
@@ -213,7 +214,8 @@ PYBIND11_MODULE(_fleetmerge, m) {
             }
             SetInitialPose(map, TupleOf(*map.initial_pose()), sigma);
           },
-          "the initial pose's (metres, radians) sigmas; default (0.5, 10 deg)")
+          "the initial pose's (metres, radians) sigmas (default (0.5, 10 deg)), or None without "
+          "an initial pose")
       .def("__repr__", [](const fleetmerge::Map& map) {
         return "<fleetmerge.Map '" + map.name() + "' " + std::to_string(map.width()) + "x" +
                std::to_string(map.height()) + " @ " + std::to_string(map.resolution()) + " m>";

@@ -246,6 +246,7 @@ def test_initial_poses_refuse_contradicting_pairs_and_place_maps():
     assert refused["maps"][1]["initial_pose_sigma"] == pytest.approx([0.2, math.radians(10)])
     with pytest.raises(ValueError, match="initial_pose_sigma is the uncertainty of an initial_pose"):
         fleetmerge.Map(robot.data, robot.resolution, initial_pose_sigma=(0.5, 0.1))
+    assert fleetmerge.Map(robot.data, robot.resolution).initial_pose_sigma is None
     with pytest.raises(ValueError, match=r"initial_pose\[1\] must be finite"):
         robot.initial_pose = (0.0, float("nan"), 0.0)
     with pytest.raises(ValueError, match=r"initial_pose_sigma\[0\] must be finite and > 0"):
