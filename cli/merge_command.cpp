@@ -306,6 +306,9 @@ int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream
   for (Job& job : jobs) {  // the command line's cache is every job's
     if (command.cache_dir) job.options.cache_dir = *command.cache_dir;
     if (command.cache_max_mb) job.options.cache_max_mb = *command.cache_max_mb;
+    if (job.options.cache_dir.empty() && !job.cache_bound_without_cache.empty()) {
+      throw Error(job.cache_bound_without_cache);
+    }
   }
   const bool some_cache = std::any_of(
       jobs.begin(), jobs.end(), [](const Job& job) { return !job.options.cache_dir.empty(); });

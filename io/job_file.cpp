@@ -431,11 +431,13 @@ ListedJob ReadJob(const YamlField& field, int number, const fs::path& job_file,
   }
   if (auto f = job.Find("cache_max_mb")) {
     result.options.cache_max_mb = ReadInteger(*f, 1, kLargestCacheMaxMb, errors);
-    // As --cache-max-mb without a cache: a bound on nothing is a mistake, not a setting.
+    // As --cache-max-mb without a cache: a bound on nothing is a mistake, not a setting,
+    // unless `merge --cache DIR` gives the job its cache (checked there).
     if (!job.Find("cache")) {
-      errors.Fail(f->key, f->line,
-                  "a size bound without a cache: give the job a 'cache' folder, or leave "
-                  "cache_max_mb out");
+      result.cache_bound_without_cache = errors.Message(
+          f->key, f->line,
+          "a size bound without a cache: give the job a 'cache' folder (or run it with "
+          "--cache DIR), or leave cache_max_mb out");
     }
   }
   return listed;

@@ -13,8 +13,12 @@ namespace fs = std::filesystem;
 
 void YamlErrors::Fail(const std::string& what) const { throw Error(path_ + ": " + what); }
 
+std::string YamlErrors::Message(const std::string& key, int line, const std::string& what) const {
+  return path_ + ": line " + std::to_string(line) + ": key '" + key + "': " + what;
+}
+
 void YamlErrors::Fail(const std::string& key, int line, const std::string& what) const {
-  Fail("line " + std::to_string(line) + ": key '" + key + "': " + what);
+  throw Error(Message(key, line, what));
 }
 
 std::string Describe(const YAML::Node& node) {

@@ -24,6 +24,8 @@ class YamlErrors {
   explicit YamlErrors(const std::filesystem::path& path) : path_(path.string()) {}
 
   [[noreturn]] void Fail(const std::string& what) const;
+  // The message Fail(key, line, what) throws, for an error decided later.
+  std::string Message(const std::string& key, int line, const std::string& what) const;
   [[noreturn]] void Fail(const std::string& key, int line, const std::string& what) const;
   [[noreturn]] void Fail(const std::string& key, const YamlEntry& entry,
                          const std::string& what) const {

@@ -30,7 +30,10 @@ struct Job {
   std::filesystem::path job_file;
   std::vector<JobMap> maps;
   std::filesystem::path output_dir;  // resolved like map paths
-  std::string reference;             // a map name; default the first fixed map, else the first map
+  // The job file's error for `cache_max_mb` without `cache` ("FILE: line N: key ...": empty
+  // when there is none): merge --cache may still give the job its cache, else it is refused.
+  std::string cache_bound_without_cache;
+  std::string reference;  // a map name; default the first fixed map, else the first map
   // Frames of the transforms written beside report.json (pipeline/launch_files.hpp).
   std::string tf_parent_frame = "map";
   std::string tf_child_frame = "{name}/map";  // {name}: the map's name

@@ -93,6 +93,23 @@ TEST_F(MergeCacheCliTest, AJobFilesCacheIsRelativeToItAndTheFlagOverridesIt) {
   EXPECT_TRUE(fs::is_directory(other));
 }
 
+// A job file's cache_max_mb without cache: is refused, naming it, unless --cache gives the cache.
+TEST_F(MergeCacheCliTest, AJobFilesSizeBoundNeedsACacheFromTheFileOrTheFlag) {
+  WriteFile(dir_ / "job.yaml",
+            "maps: [ex/robot_a.yaml, ex/robot_b.yaml]\noutput: out\ncache_max_mb: 5\n");
+  const auto alone = Fleetmerge("merge --quiet " + ShellQuote(dir_ / "job.yaml"));
+  EXPECT_EQ(alone.exit_code, 1);
+  EXPECT_TRUE(Contains(alone.err,
+                       "job.yaml: line 3: key 'cache_max_mb': a size bound without a "
+                       "cache"))
+      << alone.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  const auto flag = Fleetmerge("merge --quiet --cache " + ShellQuote(dir_ / "cache") + " " +
+                               ShellQuote(dir_ / "job.yaml"));
+  ASSERT_EQ(flag.exit_code, 0) << flag.both();
+  EXPECT_EQ(json::parse(ReadFile(dir_ / "out" / "report.json"))["cache"]["max_mb"], 5);
+}
+
 // A job file without `seed:` and `merge --out` of the same maps share their pairs.
 TEST_F(MergeCacheCliTest, AJobFileAndAMapListShareTheirPairs) {
   const fs::path cache = dir_ / "cache";

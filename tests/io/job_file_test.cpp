@@ -372,9 +372,14 @@ TEST_F(JobFileTest, CacheIsAFolderRelativeToTheJobFileWithASizeBound) {
   ExpectError(Minimal("cache: plain\n"), 4, "cache",
               "cache folder '" + (dir_ / "plain").string() + "' exists and is not a folder");
   ExpectError(Minimal("cache_max_mb: 0\n"), 4, "cache_max_mb", "expected");
-  // As --cache-max-mb without --cache: a bound on no cache is refused, not ignored.
-  ExpectError(Minimal("cache_max_mb: 64\n"), 4, "cache_max_mb",
-              "a size bound without a cache: give the job a 'cache' folder");
+  // As --cache-max-mb without --cache: a bound on no cache is refused, not ignored, unless
+  // `merge --cache` gives the job one (cli/merge_command.cpp checks it then).
+  const Job bound_only = Load(Minimal("cache_max_mb: 64\n"))[0];
+  EXPECT_EQ(bound_only.cache_bound_without_cache,
+            (dir_ / "job.yaml").string() +
+                ": line 4: key 'cache_max_mb': a size bound without a cache: give the job a "
+                "'cache' folder (or run it with --cache DIR), or leave cache_max_mb out");
+  EXPECT_TRUE(Load(Minimal("cache: c\ncache_max_mb: 64\n"))[0].cache_bound_without_cache.empty());
   ExpectError(Minimal("cache: [a, b]\n"), 4, "cache", "expected a cache folder");
 }
 
