@@ -59,19 +59,17 @@ void AcceptByThreshold(std::vector<PairOutcome>& pairs, const FleetOptions& opti
                  p.wall_agreement >= options.min_wall_agreement;
     if (p.accepted && p.refused_by_priors) {
       p.accepted = false;  // the priors decided: its note says which ones it contradicts
+      p.note = "refused: " + p.note;
     } else if (!p.accepted) {
       const std::string reason =
           p.hypotheses.empty()                       ? "no hypothesis (a map has no occupied cell)"
           : p.best_omega() < options.omega_threshold ? "best omega below the threshold"
           : p.overlap_cells < options.min_overlap_cells ? "overlap below min_overlap_cells"
                                                         : "wall agreement below min_wall_agreement";
-      // The priors' note (hypotheses they dropped, or contradicted) stays after the reason. A
-      // pair that fails the thresholds anyway was not refused by the priors.
-      if (p.refused_by_priors) {
-        p.note = reason + "; also, " + p.note.substr(p.note.find("every hypothesis"));
-      } else {
-        p.note = p.note.empty() ? reason : reason + "; " + p.note;
-      }
+      // The priors' note (hypotheses they dropped, or all contradicted) stays after the reason:
+      // a pair that fails the thresholds anyway was not refused by the priors.
+      p.note =
+          p.note.empty() ? reason : reason + (p.refused_by_priors ? "; also, " : "; ") + p.note;
       p.refused_by_priors = false;
     }
     p.edge_hypothesis = p.accepted ? 0 : -1;

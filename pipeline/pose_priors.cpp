@@ -112,7 +112,7 @@ void DropHypothesesAgainstPriors(std::vector<PairOutcome>& pairs, const FixedPos
           (predicted_b.translation_m() - known_b->T_site_map.translation_m()).norm();
       const double off_deg =
           std::abs(WrapAngle(predicted_b.yaw_rad() - known_b->T_site_map.yaw_rad())) * 180.0 / M_PI;
-      note << "refused: every hypothesis contradicts the " << known << "; the nearest, hypothesis "
+      note << "every hypothesis contradicts the " << known << "; the nearest, hypothesis "
            << nearest + 1 << ", is " << std::setprecision(1) << nearest_sigmas
            << " sigma from them (" << std::setprecision(2) << off_m << " m, "
            << std::setprecision(1) << off_deg << " deg; at most " << std::setprecision(0)

@@ -35,9 +35,11 @@ void CheckPriors(const PosePriors& priors, const FixedPoses& fixed, std::size_t 
 // How many sigmas hypothesis T_a_b is from the known poses of a and b (see above).
 double SigmasFromPriors(const Pose2& T_a_b, const PosePrior& a, const PosePrior& b);
 
-// Drops the hypotheses that contradict the known poses (see above) and refuses pairs left with
-// none (PairOutcome::refused_by_priors, with a note). Keeps a pair's measured overlap, walls and
-// margin those of its new best.
+// Drops the hypotheses that contradict the known poses (see above) and marks pairs left with none
+// (PairOutcome::refused_by_priors; their hypotheses stay), with a note saying why: "every
+// hypothesis contradicts ..." (MergeFleet's thresholds then refuse the pair with it, or put it
+// after their own reason), or which hypotheses were dropped. Keeps a pair's measured overlap,
+// walls and margin those of its new best.
 void DropHypothesesAgainstPriors(std::vector<PairOutcome>& pairs, const FixedPoses& fixed,
                                  const PosePriors& priors,
                                  const std::vector<std::string>& names = {});
