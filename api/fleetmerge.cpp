@@ -172,6 +172,22 @@ std::optional<std::string> Reference(const Options& options) {
   return options.reference;
 }
 
+// The job's reference, once its maps know which are fixed: options.reference, else the first
+// fixed map, else the first map; with fixed maps only the first fixed map may be named (as job
+// files and the command line rule).
+void SetReference(const Options& options, Job& job) {
+  const JobMap* first_fixed = FirstFixedMap(job.maps);
+  const std::string& first = first_fixed ? first_fixed->name : job.maps.front().name;
+  job.reference = options.reference.empty() ? first : options.reference;
+  bool found = false;
+  for (const JobMap& m : job.maps) found = found || m.name == job.reference;
+  Require(found, "reference '" + job.reference + "' is not one of the maps' names");
+  Require(!first_fixed || job.reference == first,
+          "reference '" + job.reference +
+              "': with fixed maps the reference is the first fixed map, '" + first +
+              "'; a reference given must be the first fixed map, or left empty");
+}
+
 }  // namespace
 
 std::string Version() { return FLEETMERGE_VERSION_STRING; }
@@ -343,15 +359,7 @@ MergeResult Merge(const std::vector<Map>& maps, const Options& options,
     l.metadata.resolution_m = maps[m].resolution();
     loaded.push_back(std::move(l));
   }
-  const JobMap* first_fixed = FirstFixedMap(job.maps);
-  const std::string& first = first_fixed ? first_fixed->name : job.maps.front().name;
-  job.reference = options.reference.empty() ? first : options.reference;
-  bool found = false;
-  for (const JobMap& m : job.maps) found = found || m.name == job.reference;
-  Require(found, "reference '" + job.reference + "' is not one of the maps' names");
-  Require(!first_fixed || job.reference == first,
-          "reference '" + job.reference + "': with fixed maps it must be the first fixed map '" +
-              first + "'");
+  SetReference(options, job);
   JobRunOptions run;
   run.write = !out_dir.empty();
   return ToResult(job, RunLoadedJob(job, loaded, {}, MillisecondsSince(start), run));
@@ -363,13 +371,11 @@ namespace {
 // `--initial-pose` give them.
 void ApplyNamedPoses(const Options& options, Job& job) {
   const auto named = [&job](const std::string& name, const char* key) -> JobMap& {
-    std::string names;
     for (JobMap& map : job.maps) {
       if (map.name == name) return map;
-      names += (names.empty() ? "'" : ", '") + map.name + "'";
     }
     throw std::invalid_argument(std::string("options.") + key + ": no map is named '" + name +
-                                "' (the maps: " + names + ")");
+                                "' (the maps: " + QuotedMapNames(job.maps) + ")");
   };
   for (const auto& [name, pose] : options.fixed) {
     CheckFixedPose(name, pose);
@@ -388,14 +394,6 @@ void ApplyNamedPoses(const Options& options, Job& job) {
     map.prior = PosePrior{Pose2(prior.pose.x, prior.pose.y, prior.pose.yaw), prior.sigma_m,
                           prior.sigma_rad};
   }
-  if (const JobMap* first_fixed = FirstFixedMap(job.maps)) {
-    if (!options.reference.empty() && options.reference != first_fixed->name) {
-      throw std::invalid_argument("reference '" + options.reference +
-                                  "': with fixed maps the reference is the first fixed map, '" +
-                                  first_fixed->name + "'; leave it empty");
-    }
-    job.reference = first_fixed->name;
-  }
 }
 
 }  // namespace
@@ -407,6 +405,7 @@ MergeResult MergeFiles(const std::vector<std::string>& paths, const Options& opt
   const std::vector<std::filesystem::path> files(paths.begin(), paths.end());
   Job job = MapListJob(files, out_dir, Reference(options), fleet_options);
   ApplyNamedPoses(options, job);
+  SetReference(options, job);
   JobRunOptions run;
   run.write = !out_dir.empty();
   return ToResult(job, RunJob(job, run));

@@ -180,10 +180,8 @@ MapPoseOption ParseMapPoseOption(const std::string& flag, const std::string& val
   const auto named = std::find_if(job.maps.begin(), job.maps.end(),
                                   [&](const JobMap& map) { return map.name == name; });
   if (named == job.maps.end()) {
-    std::string names;
-    for (const JobMap& map : job.maps) names += (names.empty() ? "'" : ", '") + map.name + "'";
-    throw Error(flag + " '" + value + "': no map is named '" + name + "' (the maps: " + names +
-                ")");
+    throw Error(flag + " '" + value + "': no map is named '" + name +
+                "' (the maps: " + QuotedMapNames(job.maps) + ")");
   }
   option.map = static_cast<std::size_t>(named - job.maps.begin());
   if (equals == std::string::npos) {

@@ -49,4 +49,11 @@ inline const JobMap* FirstFixedMap(const std::vector<JobMap>& maps) {
   return nullptr;
 }
 
+// "'a', 'b', 'c'": the maps' names, for an error about a name that is none of them.
+inline std::string QuotedMapNames(const std::vector<JobMap>& maps) {
+  std::string names;
+  for (const JobMap& map : maps) names += (names.empty() ? "'" : ", '") + map.name + "'";
+  return names;
+}
+
 }  // namespace fleetmerge
