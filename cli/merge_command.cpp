@@ -142,12 +142,14 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
         << cache.pairs_computed << " computed";
     if (cache.rejected > 0) out << "; " << cache.rejected << " bad cache entries rebuilt";
     // Never this job's entries (CacheFolder::Evict): older ones, of this job or others.
-    if (cache.evicted > 0) out << "; " << cache.evicted << " older cache entries evicted";
+    if (cache.eviction.removed > 0) {
+      out << "; " << cache.eviction.removed << " older cache entries evicted";
+    }
     out << "\n";
-    if (cache.over_bound) {
+    if (cache.eviction.over_bound) {
       err << "fleetmerge: warning: job '" << job.name << "': the cache's size bound ("
           << job.options.cache_max_mb << " MiB, --cache-max-mb / cache_max_mb) is below this job's "
-          << cache.entries_in_use << " pairs (" << MebibytesText(cache.in_use_bytes)
+          << cache.eviction.in_use << " pairs (" << MebibytesText(cache.eviction.in_use_bytes)
           << " MiB); they were all kept, so " << job.options.cache_dir.string()
           << " holds more than its bound; raise the bound to keep other jobs' pairs too\n";
     }

@@ -270,9 +270,9 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
                                {"pairs_computed", stats.pairs_computed},
                                {"maps_prepared", stats.maps_prepared},
                                {"entries_rejected", stats.rejected},
-                               {"entries_evicted", stats.evicted},
-                               {"entries_in_use", stats.entries_in_use},
-                               {"bound_below_job", stats.over_bound},
+                               {"entries_evicted", stats.eviction.removed},
+                               {"entries_in_use", stats.eviction.in_use},
+                               {"bound_below_job", stats.eviction.over_bound},
                                {"write_failures", stats.write_failures}};
     if (!stats.first_write_error.empty()) {
       outcome.report["cache"]["first_write_error"] = stats.first_write_error;

@@ -200,10 +200,7 @@ PairCacheStats PairCache::stats() const {
   stats.pairs_computed = pairs_computed_;
   stats.maps_prepared = maps_prepared_;
   stats.rejected = folder_.rejected();
-  stats.evicted = eviction_.removed;
-  stats.entries_in_use = eviction_.in_use;
-  stats.in_use_bytes = eviction_.in_use_bytes;
-  stats.over_bound = eviction_.over_bound;
+  stats.eviction = eviction_;
   stats.write_failures = write_failures_;
   const std::lock_guard<std::mutex> lock(error_mutex_);
   stats.first_write_error = first_write_error_;

@@ -14,7 +14,6 @@
 #pragma once
 
 #include <atomic>
-#include <cstdint>
 #include <filesystem>
 #include <mutex>
 #include <optional>
@@ -44,11 +43,8 @@ struct PairCacheStats {
   int pairs_computed = 0;  // computed (and stored)
   int maps_prepared = 0;   // maps prepared for the pairs computed (pipeline/prepared_map.hpp)
   int rejected = 0;        // entries found corrupt, truncated, foreign or of another version
-  int evicted = 0;         // entries of other jobs removed for the size bound
-  int entries_in_use = 0;  // this job's entries, never evicted (CacheFolder::Evict)
-  std::int64_t in_use_bytes = 0;
-  bool over_bound = false;  // this job's entries alone take more than the bound (all kept)
-  int write_failures = 0;   // entries that could not be stored (the job goes on without them)
+  CacheEviction eviction;  // older entries evicted for the size bound, never this job's
+  int write_failures = 0;  // entries that could not be stored (the job goes on without them)
   std::string first_write_error;
 };
 

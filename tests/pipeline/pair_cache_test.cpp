@@ -289,12 +289,12 @@ TEST_F(PairCacheTest, ABoundBelowTheJobsPairsKeepsThemAll) {
     *stats = cache.stats();
   }
   EXPECT_EQ(first.pairs_computed, 3);
-  EXPECT_EQ(first.evicted, 0);
-  EXPECT_EQ(first.entries_in_use, 3);
-  EXPECT_TRUE(first.over_bound);
+  EXPECT_EQ(first.eviction.removed, 0);
+  EXPECT_EQ(first.eviction.in_use, 3);
+  EXPECT_TRUE(first.eviction.over_bound);
   EXPECT_EQ(again.pairs_cached, 3);
   EXPECT_EQ(again.pairs_computed, 0);
-  EXPECT_TRUE(again.over_bound);
+  EXPECT_TRUE(again.eviction.over_bound);
 }
 
 TEST_F(PairCacheTest, TheCacheIsReleasedOnceThePairsAreDone) {
