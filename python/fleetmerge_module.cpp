@@ -22,6 +22,15 @@ namespace {
 
 [[noreturn]] void ValueError(const std::string& what) { throw py::value_error(what); }
 
+// One number of an argument; `what` names it in the message: "origin[1]", "initial_pose_sigma[0]".
+double NumberFrom(const py::handle& value, const std::string& what) {
+  try {
+    return value.cast<double>();
+  } catch (const py::cast_error&) {
+    ValueError(what + " must be a number");
+  }
+}
+
 // `what` names the argument in messages: "origin", "pose".
 fleetmerge::Pose2D PoseFrom(const py::handle& pose, const std::string& what) {
   if (!py::isinstance<py::sequence>(pose) || py::isinstance<py::str>(pose)) {
@@ -33,11 +42,7 @@ fleetmerge::Pose2D PoseFrom(const py::handle& pose, const std::string& what) {
   }
   double v[3];
   for (int k = 0; k < 3; ++k) {
-    try {
-      v[k] = seq[k].cast<double>();
-    } catch (const py::cast_error&) {
-      ValueError(what + "[" + std::to_string(k) + "] must be a number");
-    }
+    v[k] = NumberFrom(seq[k], what + "[" + std::to_string(k) + "]");
     if (!std::isfinite(v[k])) ValueError(what + "[" + std::to_string(k) + "] must be finite");
   }
   return {v[0], v[1], v[2]};
@@ -67,11 +72,7 @@ void SetInitialPose(fleetmerge::Map& map, const py::object& pose, const py::obje
     }
     const auto seq = py::reinterpret_borrow<py::sequence>(sigma);
     for (int k = 0; k < 2; ++k) {
-      try {
-        s[k] = seq[k].cast<double>();
-      } catch (const py::cast_error&) {
-        ValueError("initial_pose_sigma[" + std::to_string(k) + "] must be a number");
-      }
+      s[k] = NumberFrom(seq[k], "initial_pose_sigma[" + std::to_string(k) + "]");
       if (!std::isfinite(s[k]) || !(s[k] > 0.0)) {
         ValueError("initial_pose_sigma[" + std::to_string(k) + "] must be finite and > 0, got " +
                    std::to_string(s[k]));
@@ -153,7 +154,15 @@ PYBIND11_MODULE(_fleetmerge, m) {
   m.doc() = "fleetmerge's C++ library (use the fleetmerge package, not this module)";
   m.attr("__version__") = fleetmerge::Version();
 
-  py::class_<fleetmerge::Map>(m, "Map")
+  py::class_<fleetmerge::Map>(
+      m, "Map",
+      "Map(data, resolution, origin=(0, 0, 0), name='', *, fixed=False, pose=(0, 0, 0),\n"
+      "    initial_pose=None, initial_pose_sigma=None)\n\n"
+      "An occupancy grid as nav_msgs/OccupancyGrid: data is int8, height x width, -1 unknown,\n"
+      "0..100 occupancy, row 0 at the origin; resolution in metres per cell; origin (x, y, yaw)\n"
+      "of cell (0, 0)'s outer corner. For merge: fixed=True keeps the map at pose (its frame in\n"
+      "the merged frame, exact); initial_pose (x, y, yaw) is a known start pose, with\n"
+      "initial_pose_sigma (metres, radians), default (0.5, 10 deg) (configs/README.md).")
       .def(py::init([](const py::object& data, const py::object& resolution,
                        const py::object& origin, const std::string& name, const py::object& fixed,
                        const py::object& pose, const py::object& initial_pose,
@@ -293,12 +302,9 @@ PYBIND11_MODULE(_fleetmerge, m) {
              fleetmerge::InitialPose prior;
              prior.pose = PoseFrom(py::make_tuple(seq[0], seq[1], seq[2]), what);
              if (seq.size() == 5) {
-               try {
-                 prior.sigma_m = seq[3].cast<double>();
-                 prior.sigma_rad = seq[4].cast<double>();
-               } catch (const py::cast_error&) {
-                 ValueError(what + "'s sigmas (metres, radians) must be numbers");
-               }
+               // Checked (finite, > 0) with the pose by MergeFiles, as Map.initial_pose_sigma.
+               prior.sigma_m = NumberFrom(seq[3], what + "[3] (metres)");
+               prior.sigma_rad = NumberFrom(seq[4], what + "[4] (radians)");
              }
              o.initial_poses[name] = prior;
            });

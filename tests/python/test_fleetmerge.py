@@ -99,7 +99,6 @@ def test_merge_equals_cli_report(tmp_path):
 
 
 @needs_maps
-@needs_maps
 def test_merge_of_files_takes_fixed_maps_and_initial_poses_by_name(tmp_path):
     # As `merge --fixed NAME=... --initial-pose NAME=...`: the same report (configs/
     # site_with_priors.yaml's poses: run4 overlaps nobody and is placed at its prior).
@@ -118,6 +117,12 @@ def test_merge_of_files_takes_fixed_maps_and_initial_poses_by_name(tmp_path):
         fleetmerge.merge(paths, fixed={"run9": (0, 0, 0)})
     with pytest.raises(ValueError, match=r"must be \(x, y, yaw\) or \(x, y, yaw, metres"):
         fleetmerge.merge(paths, initial_poses={"robotis_corridor_run2": (1, 2)})
+    with pytest.raises(ValueError, match=r"initial_poses\['robotis_corridor_run2'\]\[4\] "
+                                         r"\(radians\) must be a number"):
+        fleetmerge.merge(paths, initial_poses={"robotis_corridor_run2": (1, 2, 0, 0.5, "x")})
+    with pytest.raises(ValueError, match=r"'robotis_corridor_run2': an initial pose's sigmas "
+                                         r"\[-0.500000 m"):
+        fleetmerge.merge(paths, initial_poses={"robotis_corridor_run2": (1, 2, 0, -0.5, 0.1)})
     with pytest.raises(ValueError, match="fixed must be a dict"):
         fleetmerge.merge(paths, fixed=[(0, 0, 0)])
     with pytest.raises(ValueError, match="a Map carries its own"):
@@ -309,6 +314,19 @@ def test_map_from_occupancy_grid_values():
     assert (m.width, m.height, m.name) == (30, 20, "grid")
     assert m.origin == (1.0, -2.0, 0.5)
     assert np.array_equal(m.data, data)  # kept as given
+
+
+def test_map_help_names_the_constructors_arguments():
+    # help(fleetmerge.Map) leads with the constructor; its argument names must be the real ones.
+    def names(signature):
+        inner = signature[signature.index("(") + 1:signature.rindex(")")]
+        inner = re.sub(r"\([^()]*\)", "", inner)  # default tuples hold commas
+        args = [a.split(":")[0].split("=")[0].strip() for a in inner.split(",")]
+        return [a for a in args if a not in ("self", "*")]
+    documented = fleetmerge.Map.__doc__.split("\n\n")[0].replace("\n", " ")
+    actual = fleetmerge.Map.__init__.__doc__.strip().splitlines()[0]
+    assert names(documented) == names(actual)
+    assert "initial_pose_sigma" in names(documented)
 
 
 def test_saved_map_is_trinary(tmp_path):
