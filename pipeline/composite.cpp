@@ -253,10 +253,10 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
   const cv::Size size(geometry.width(), geometry.height());
   const InputSampler sampler(inputs, geometry);
   OccupancyGrid merged(geometry);
-  cv::Mat1w occupied_count(size, 0);
-  cv::Mat1w free_count(size, 0);
   cv::Mat1b sampled(size);  // scratch; only each input's region is touched
   // Each band of rows is fused from every input's part in it; the bands touch disjoint rows.
+  // The counts are the band's own (two 64-row buffers per band, not two merged-size arrays
+  // zeroed on one thread before the bands start).
   constexpr int kBandRows = 64;
   const int bands = (size.height + kBandRows - 1) / kBandRows;
   ParallelFor(static_cast<std::size_t>(bands), threads, [&](std::size_t band_index) {
@@ -264,6 +264,8 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
     const cv::Rect band(0, y0, size.width, std::min(kBandRows, size.height - y0));
     const std::unique_ptr<CompositeObserver::Band> seen =
         observer != nullptr ? observer->StartBand(band) : nullptr;
+    cv::Mat1w occupied_count(band.height, band.width, std::uint16_t{0});
+    cv::Mat1w free_count(band.height, band.width, std::uint16_t{0});
     for (std::size_t k = 0; k < inputs.size(); ++k) {
       const cv::Rect region = sampler.Sample(k, band, sampled);
       if (seen && region.area() > 0) seen->Add(k, sampled, region);
@@ -271,8 +273,8 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
       // and two mask allocations per input and band).
       for (int j = region.y; j < region.y + region.height; ++j) {
         const std::uint8_t* states = sampled.ptr<std::uint8_t>(j);
-        std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j);
-        std::uint16_t* free_row = free_count.ptr<std::uint16_t>(j);
+        std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j - band.y);
+        std::uint16_t* free_row = free_count.ptr<std::uint16_t>(j - band.y);
         for (int i = region.x; i < region.x + region.width; ++i) {
           occupied_row[i] += states[i] == static_cast<std::uint8_t>(CellState::kOccupied);
           free_row[i] += states[i] == static_cast<std::uint8_t>(CellState::kFree);
@@ -280,8 +282,8 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
       }
     }
     for (int j = band.y; j < band.y + band.height; ++j) {
-      const std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j);
-      const std::uint16_t* free_row = free_count.ptr<std::uint16_t>(j);
+      const std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j - band.y);
+      const std::uint16_t* free_row = free_count.ptr<std::uint16_t>(j - band.y);
       std::uint8_t* merged_row = merged.mutable_cells().ptr<std::uint8_t>(j);
       for (int i = 0; i < size.width; ++i) {
         merged_row[i] = static_cast<std::uint8_t>(Fuse(occupied_row[i], free_row[i], mode));
