@@ -86,6 +86,17 @@ assert len(lines) == len(report["maps"]) == 3
 PY
 echo "merge: the consumer's placements equal its report.json"
 
+# The same consumer against the build tree, not installed (-Dfleetmerge_DIR=<build>/api): the
+# build's library, with the version the install has.
+cmake -S "$source/examples/cpp_consumer" -B "$tmp/build_tree_consumer" \
+  -Dfleetmerge_DIR="$build/api" -DCMAKE_BUILD_TYPE=Release > "$tmp/build_tree_configure.log"
+cmake --build "$tmp/build_tree_consumer" > "$tmp/build_tree_build.log"
+[ "$("$tmp/build_tree_consumer/merge_fleet" version)" = "$("$consumer" version)" ]
+ldd "$tmp/build_tree_consumer/merge_fleet" | grep -q "$(realpath "$build")/api/libfleetmerge.so" ||
+  { ldd "$tmp/build_tree_consumer/merge_fleet"; echo "FAIL: not linked to the build's library"; exit 1; }
+[ "$("$tmp/build_tree_consumer/merge_fleet" memory)" = "$("$consumer" memory)" ]
+echo "build tree: the consumer built with -Dfleetmerge_DIR=$build/api gives the install's results"
+
 # The README's C++ example, as printed there, compiled against the install and run.
 readme=$tmp/readme_example
 mkdir -p "$readme"
