@@ -246,7 +246,7 @@ TEST_F(MergeCacheCliTest, AFolderOrAFifoInAnEntrysPlaceIsRebuilt) {
 // 24 maps make 276 pairs, more than the smallest bound (1 MiB: ~250 entries of a 4 KiB block):
 // the job keeps them all (its re-run takes every pair from the cache) and warns. The maps are
 // one small room (40 x 40 cells) at 24 origins: an entry's size does not depend on the map's,
-// and 276 pairs of the example's robots took 80 s under the sanitizers.
+// and 276 pairs of larger maps would cost a minute under the sanitizers.
 TEST_F(MergeCacheCliTest, ABoundBelowTheJobsPairsKeepsThemAndWarns) {
   constexpr int kCells = 40;
   std::string pgm = "P5\n" + std::to_string(kCells) + " " + std::to_string(kCells) + "\n255\n";

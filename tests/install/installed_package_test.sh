@@ -92,8 +92,9 @@ cmake -S "$source/examples/cpp_consumer" -B "$tmp/build_tree_consumer" \
   -Dfleetmerge_DIR="$build/api" -DCMAKE_BUILD_TYPE=Release > "$tmp/build_tree_configure.log"
 cmake --build "$tmp/build_tree_consumer" > "$tmp/build_tree_build.log"
 [ "$("$tmp/build_tree_consumer/merge_fleet" version)" = "$("$consumer" version)" ]
-ldd "$tmp/build_tree_consumer/merge_fleet" | grep -q "$(realpath "$build")/api/libfleetmerge.so" ||
-  { ldd "$tmp/build_tree_consumer/merge_fleet"; echo "FAIL: not linked to the build's library"; exit 1; }
+loaded=$(ldd "$tmp/build_tree_consumer/merge_fleet" | awk '/libfleetmerge\.so/ {print $3}')
+[ "$loaded" -ef "$build/api/libfleetmerge.so" ] ||
+  { echo "FAIL: the build-tree consumer loads '$loaded', not the build's library"; exit 1; }
 [ "$("$tmp/build_tree_consumer/merge_fleet" memory)" = "$("$consumer" memory)" ]
 echo "build tree: the consumer built with -Dfleetmerge_DIR=$build/api gives the install's results"
 
