@@ -135,4 +135,28 @@ Agreement CountAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const P
   return result;
 }
 
+std::optional<Eigen::Vector2d> OverlapCentre(const OccupancyGrid& a, const OccupancyGrid& b,
+                                             const Pose2& T_ga_gb, int stride) {
+  stride = std::max(stride, 1);
+  const auto unknown = static_cast<std::uint8_t>(CellState::kUnknown);
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  std::int64_t count = 0;
+  for (int j = 0; j < b.height(); j += stride) {
+    const std::uint8_t* b_row = b.cells().ptr<std::uint8_t>(j);
+    for (int i = 0; i < b.width(); i += stride) {
+      if (b_row[i] == unknown) continue;
+      const Eigen::Vector2d centre(i + 0.5, j + 0.5);
+      const Eigen::Vector2d in_a = T_ga_gb * centre;
+      const int ia = static_cast<int>(std::floor(in_a.x()));
+      const int ja = static_cast<int>(std::floor(in_a.y()));
+      if (ia < 0 || ja < 0 || ia >= a.width() || ja >= a.height()) continue;
+      if (a.cells().ptr<std::uint8_t>(ja)[ia] == unknown) continue;
+      sum += centre;
+      ++count;
+    }
+  }
+  if (count == 0) return std::nullopt;
+  return sum / static_cast<double>(count);
+}
+
 }  // namespace fleetmerge

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -45,5 +46,11 @@ RowSpans KnownRowSpans(const OccupancyGrid& grid);
 // `b_spans` (KnownRowSpans(b)) may be given to skip b's unknown margins.
 Agreement CountAgreement(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_ga_gb,
                          int stride = 1, const RowSpans* b_spans = nullptr);
+
+// The centre (mean) of b's known cells that land on a's known cells under T_ga_gb (as
+// CountAgreement), in b's GRID frame in cell units; nullopt when none does. Visits every
+// stride-th row and column of b.
+std::optional<Eigen::Vector2d> OverlapCentre(const OccupancyGrid& a, const OccupancyGrid& b,
+                                             const Pose2& T_ga_gb, int stride = 1);
 
 }  // namespace fleetmerge

@@ -13,10 +13,13 @@ PoseGraphEdge EdgeOf(const PairOutcome& pair) {
   return {pair.a, pair.b, h.T_a_b, h.omega, 0.0, 0.0};
 }
 
-std::vector<PoseGraphEdge> EdgesOf(const std::vector<PairOutcome>& pairs) {
+std::vector<PoseGraphEdge> EdgesOf(const std::vector<PairOutcome>& pairs,
+                                   const EdgeAnchor& anchor) {
   std::vector<PoseGraphEdge> edges;
   for (const auto& p : pairs) {
-    if (p.accepted) edges.push_back(EdgeOf(p));
+    if (!p.accepted) continue;
+    edges.push_back(EdgeOf(p));
+    if (anchor) edges.back().anchor_b_m = anchor(p, p.edge_hypothesis);
   }
   return edges;
 }
@@ -52,6 +55,7 @@ namespace {
 struct Known {
   const FixedPoses& fixed;
   const PosePriors& priors;
+  const EdgeAnchor& anchor;
   bool any(int m) const { return IsFixed(fixed, m) || HasPrior(priors, m); }
 };
 
@@ -99,7 +103,7 @@ int SiteComponent(const std::vector<int>& component_of, const Known& known) {
 std::vector<std::optional<Pose2>> Solve(int map_count, const std::vector<PairOutcome>& pairs,
                                         int reference, const PoseGraphOptions& options,
                                         const Known& known, bool in_site) {
-  auto edges = EdgesOf(pairs);
+  auto edges = EdgesOf(pairs, known.anchor);
   if (!in_site) {
     return OptimizePoseGraph(SpanningTreePoses(map_count, edges, reference), edges, reference,
                              options);
@@ -344,9 +348,9 @@ int ComponentReference(const std::vector<int>& component_of, int c, int referenc
 
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
                            const PoseGraphOptions& options, const FixedPoses& fixed,
-                           const PosePriors& priors) {
+                           const PosePriors& priors, const EdgeAnchor& anchor) {
   FleetGraph graph;
-  const Known known{fixed, priors};
+  const Known known{fixed, priors, anchor};
   Solver solver(map_count, options, known);
   ResolveTriangleConflicts(map_count, pairs, options);
   // Longer cycles: solve, take out the worst edge, repeat. Each fix removes or replaces one edge,

@@ -10,6 +10,7 @@
 // is rejected; repeat until every edge agrees. A bridge edge has no cycle to check it.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -37,6 +38,10 @@ std::vector<int> Components(int map_count, const std::vector<PairOutcome>& pairs
 using FixedPoses = std::vector<std::optional<Pose2>>;
 inline bool IsFixed(const FixedPoses& fixed, int m) { return !fixed.empty() && fixed[m]; }
 
+// Where the pose graph measures the edge of a pair's hypothesis (PoseGraphEdge::anchor_b_m): a
+// point of b's map frame, for the pair and the index of the hypothesis. Empty: b's frame origin.
+using EdgeAnchor = std::function<Eigen::Vector2d(const PairOutcome& pair, int hypothesis)>;
+
 // Marks pairs accepted (in `pairs`, with edge_hypothesis and notes) and returns the poses.
 // `reference` is the job's reference map; other components use their first map.
 // Fixed maps (`fixed`, `reference` then the first of them) are one component whatever the edges:
@@ -57,6 +62,6 @@ inline bool IsFixed(const FixedPoses& fixed, int m) { return !fixed.empty() && f
 // (pipeline/pose_priors.hpp). Without priors and fixed maps nothing of this applies.
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
                            const PoseGraphOptions& options, const FixedPoses& fixed = {},
-                           const PosePriors& priors = {});
+                           const PosePriors& priors = {}, const EdgeAnchor& anchor = {});
 
 }  // namespace fleetmerge

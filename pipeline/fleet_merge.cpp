@@ -4,10 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <sstream>
+#include <tuple>
 
+#include "core/acceptance_index.hpp"
 #include "core/error.hpp"
+#include "core/hypothesis_generator.hpp"
 #include "core/parallel.hpp"
 #include "core/resample.hpp"
 #include "pipeline/composite.hpp"
@@ -239,8 +243,22 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   start = std::chrono::steady_clock::now();
   DropHypothesesAgainstPriors(result.pairs, fixed, priors, options.map_names);
   AcceptByThreshold(result.pairs, options);
+  // Each edge measured where its two maps overlap (refine/pose_graph.hpp, anchor_b_m): made once
+  // per pair and hypothesis, as the rounds below solve the graph again.
+  std::map<std::tuple<int, int, int>, Eigen::Vector2d> anchors_m;
+  const EdgeAnchor anchor = [&](const PairOutcome& pair, int h) {
+    auto [at, made] = anchors_m.try_emplace({pair.a, pair.b, h}, Eigen::Vector2d::Zero());
+    if (!made) return at->second;
+    const OccupancyGrid& a = result.maps[pair.a];
+    const OccupancyGrid& b = result.maps[pair.b];
+    const Pose2 T_ga_gb = CellPoseFromMapPose(a.geometry(), b.geometry(), pair.hypotheses[h].T_a_b);
+    if (const auto centre_cells = OverlapCentre(a, b, T_ga_gb, 2)) {
+      at->second = b.geometry().T_map_grid() * (*centre_cells * b.geometry().resolution_m());
+    }
+    return at->second;
+  };
   FleetGraph graph = SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference,
-                                     options.pose_graph, fixed, priors);
+                                     options.pose_graph, fixed, priors, anchor);
   // Made once, in parallel: every round judges the pairs again.
   std::vector<std::optional<MapWalls>> made(result.maps.size());
   ParallelFor(made.size(), options.threads,
@@ -266,7 +284,7 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
       }
     }
     graph = SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference,
-                            options.pose_graph, fixed, priors);
+                            options.pose_graph, fixed, priors, anchor);
   }
   result.component_of = graph.component_of;
   result.T_component_map = graph.T_component_map;

@@ -19,7 +19,8 @@ T WrapAngleT(const T& angle) {
 
 struct RelativePoseResidual {
   RelativePoseResidual(const PoseGraphEdge& edge, const PoseGraphOptions& options)
-      : p_ab(edge.T_a_b.translation_m()),
+      : q_b(edge.anchor_b_m),
+        q_a(edge.T_a_b * edge.anchor_b_m),
         yaw_ab(edge.T_a_b.yaw_rad()),
         w_t(std::sqrt(edge.omega) / (edge.translation_sigma_m > 0.0 ? edge.translation_sigma_m
                                                                     : options.translation_sigma_m)),
@@ -29,15 +30,19 @@ struct RelativePoseResidual {
   // pose = (x_m, y_m, yaw_rad) of T_ref_node.
   template <typename T>
   bool operator()(const T* a, const T* b, T* r) const {
+    // The anchor q_b of b's frame in a's frame under the poses, against where the edge puts it.
+    const T cb = ceres::cos(b[2]), sb = ceres::sin(b[2]);
+    const T qx = b[0] + cb * T(q_b.x()) - sb * T(q_b.y());
+    const T qy = b[1] + sb * T(q_b.x()) + cb * T(q_b.y());
     const T c = ceres::cos(a[2]), s = ceres::sin(a[2]);
-    const T dx = b[0] - a[0], dy = b[1] - a[1];
-    r[0] = T(w_t) * (c * dx + s * dy - T(p_ab.x()));
-    r[1] = T(w_t) * (-s * dx + c * dy - T(p_ab.y()));
+    const T dx = qx - a[0], dy = qy - a[1];
+    r[0] = T(w_t) * (c * dx + s * dy - T(q_a.x()));
+    r[1] = T(w_t) * (-s * dx + c * dy - T(q_a.y()));
     r[2] = T(w_yaw) * WrapAngleT(b[2] - a[2] - T(yaw_ab));
     return true;
   }
 
-  Eigen::Vector2d p_ab;
+  Eigen::Vector2d q_b, q_a;  // the anchor in b's frame, and where the edge puts it in a's
   double yaw_ab, w_t, w_yaw;
 };
 

@@ -35,6 +35,11 @@ struct PoseGraphEdge {
   // yaw_sigma_rad, the expected error of a pair's hypothesis.
   double translation_sigma_m = 0.0;
   double yaw_sigma_rad = 0.0;
+  // The point of b's frame (metres) where the translation error is measured: b's frame origin,
+  // or for a pair the centre of the two maps' overlap. A pair's hypothesis is known best where
+  // its maps' cells are; a map's frame origin can lie tens of metres from them, and there a yaw
+  // error of 0.1 deg already moves it by a cell or more.
+  Eigen::Vector2d anchor_b_m = Eigen::Vector2d::Zero();
 };
 
 // Poses T_ref_node of every node reached from `reference` by composing edges along a maximum-

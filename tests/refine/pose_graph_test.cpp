@@ -128,6 +128,52 @@ TEST(PoseGraph, JointRefinementImprovesOnTheSpanningTreeWithNoisyPairs) {
   EXPECT_LT(graph_error, 0.8 * tree_error);
 }
 
+TEST(PoseGraph, AnEdgeMeasuredAtItsMapsCellsKeepsThemInPlace) {
+  // Each map's cells lie 40 m from its frame's origin (as a robot's map can). A pair search
+  // recovers a pose best where the cells are: its error is a small turn (0.15 deg) about them,
+  // which at the far origin looks like a 10 cm shift. Measured at the origin, the edges let the
+  // solution turn maps about their origins and move their cells; measured at the cells (each
+  // edge's anchor_b_m), the cells stay within the edges' own error.
+  const Eigen::Vector2d cells_m(40.0, 0.0);  // in every map's frame
+  const auto about_cells = [&](double yaw_rad) {
+    return Pose2(cells_m.x(), cells_m.y(), 0.0) * Pose2(0, 0, yaw_rad) *
+           Pose2(-cells_m.x(), -cells_m.y(), 0.0);
+  };
+  // Where each map's cells are against the truth, averaged over the maps (map 0 is the gauge).
+  const auto cells_error_m = [&](const std::vector<std::optional<Pose2>>& est,
+                                 const std::vector<Pose2>& truth) {
+    double sum = 0.0;
+    for (std::size_t m = 1; m < truth.size(); ++m) {
+      sum += ((*est[m]) * cells_m - truth[m] * cells_m).norm();
+    }
+    return sum / (truth.size() - 1);
+  };
+  double at_origin_m = 0.0, at_cells_m = 0.0;
+  for (std::uint32_t seed = 0; seed < 20; ++seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> turn_rad(0.0, 0.15 * M_PI / 180);
+    const auto truth = RandomPoses(6, rng);
+    std::vector<PoseGraphEdge> edges;
+    for (int a = 0; a < 6; ++a) {
+      for (int b = a + 1; b < 6; ++b) {
+        edges.push_back({a, b, truth[a].inverse() * truth[b] * about_cells(turn_rad(rng)), 0.95});
+      }
+    }
+    const auto tree = SpanningTreePoses(6, edges, 0);
+    at_origin_m += cells_error_m(OptimizePoseGraph(tree, edges, 0, PoseGraphOptions{}), truth);
+    for (PoseGraphEdge& edge : edges) edge.anchor_b_m = cells_m;
+    at_cells_m += cells_error_m(OptimizePoseGraph(tree, edges, 0, PoseGraphOptions{}), truth);
+  }
+  at_origin_m /= 20;
+  at_cells_m /= 20;
+  std::printf(
+      "[ pose graph ] mean error of the maps' cells: edges at the origin %.3f m, "
+      "at the cells %.3f m\n",
+      at_origin_m, at_cells_m);
+  EXPECT_LT(at_cells_m, 0.5 * at_origin_m);
+  EXPECT_LT(at_cells_m, 0.05);  // a cell at 5 cm
+}
+
 // Pair outcomes for the fleet graph: the truth as hypothesis, with an optional wrong best.
 PairOutcome Outcome(int a, int b, const std::vector<Pose2>& truth,
                     std::optional<Pose2> wrong_best) {
