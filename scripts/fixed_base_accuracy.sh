@@ -9,9 +9,9 @@
 # Prints one line per case (robots, placed right, placed wrong, left out, worst yaw and
 # displacement of the placed ones, whether the base kept its pose exactly) and the totals;
 # willow-full-0.05 is printed apart (docs/accuracy.md: its identical corridors defeat the pair
-# search). Needs a build (scripts/build.sh) and ../shared/data/maps; about 3 minutes on 2 cores.
+# search). Needs a build (scripts/build.sh) and ../shared/data/maps; about 2 minutes on 2 cores.
 # Usage: scripts/fixed_base_accuracy.sh [OUT_DIR] [ROBOTS]   (default out/fixed_base, 5)
-# FIXED_BASE_SEEDS replaces the seed list (default "1 2 3 4 5").
+# FIXED_BASE_SEEDS replaces the seed list (default 1 to 10).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 fleetmerge=${BUILD_DIR:-build}/cli/fleetmerge
@@ -31,7 +31,7 @@ buildings="aces3_austin bookstore_tb3 gdc_floor1_full gdc_floor2_full intel_lab 
   warehouse_002 willow-full-0.05"
 
 for building in $buildings; do
-  for seed in ${FIXED_BASE_SEEDS:-1 2 3 4 5}; do
+  for seed in ${FIXED_BASE_SEEDS:-1 2 3 4 5 6 7 8 9 10}; do
     dir=$out/${building}_$seed
     rm -rf "$dir"
     "$fleetmerge" simulate "$dir" --building "$maps/$building.yaml" --robots "$robots" \
