@@ -165,6 +165,17 @@ void CompositeComponent(const std::vector<const OccupancyGrid*>& maps, const Fle
   if (preview) component.preview = preview->image();
 }
 
+// Where the pose graph measures the edge of b's pose in a's frame T_a_b: the centre of b's known
+// cells on a's known cells (b's frame, metres), or b's frame origin when none overlap. Every 8th
+// row and column of b: a centre a few cells off changes nothing against lever arms of metres,
+// and a 33-robot fleet's 200 accepted pairs cost 10 ms instead of 400 at every 2nd.
+Eigen::Vector2d OverlapAnchor(const OccupancyGrid& a, const OccupancyGrid& b, const Pose2& T_a_b) {
+  const Pose2 T_ga_gb = CellPoseFromMapPose(a.geometry(), b.geometry(), T_a_b);
+  const std::optional<Eigen::Vector2d> centre_cells = OverlapCentre(a, b, T_ga_gb, 8);
+  if (!centre_cells) return Eigen::Vector2d::Zero();
+  return b.geometry().T_map_grid() * (*centre_cells * b.geometry().resolution_m());
+}
+
 }  // namespace
 
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
@@ -243,17 +254,30 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   start = std::chrono::steady_clock::now();
   DropHypothesesAgainstPriors(result.pairs, fixed, priors, options.map_names);
   AcceptByThreshold(result.pairs, options);
-  // Each edge measured where its two maps overlap (refine/pose_graph.hpp, anchor_b_m): made once
-  // per pair and hypothesis, as the rounds below solve the graph again.
+  // Each edge measured where its two maps overlap (refine/pose_graph.hpp, anchor_b_m), made once
+  // per pair and hypothesis: the accepted pairs' in parallel here, a hypothesis that replaces
+  // one (pipeline/fleet_graph.hpp's cycle checks) when it is first asked for.
   std::map<std::tuple<int, int, int>, Eigen::Vector2d> anchors_m;
+  {
+    std::vector<const PairOutcome*> accepted;
+    for (const PairOutcome& pair : result.pairs) {
+      if (pair.accepted) accepted.push_back(&pair);
+    }
+    std::vector<Eigen::Vector2d> made(accepted.size());
+    ParallelFor(accepted.size(), options.threads, [&](std::size_t k) {
+      const PairOutcome& pair = *accepted[k];
+      made[k] = OverlapAnchor(result.maps[pair.a], result.maps[pair.b],
+                              pair.hypotheses[pair.edge_hypothesis].T_a_b);
+    });
+    for (std::size_t k = 0; k < accepted.size(); ++k) {
+      anchors_m[{accepted[k]->a, accepted[k]->b, accepted[k]->edge_hypothesis}] = made[k];
+    }
+  }
   const EdgeAnchor anchor = [&](const PairOutcome& pair, int h) {
     auto [at, made] = anchors_m.try_emplace({pair.a, pair.b, h}, Eigen::Vector2d::Zero());
-    if (!made) return at->second;
-    const OccupancyGrid& a = result.maps[pair.a];
-    const OccupancyGrid& b = result.maps[pair.b];
-    const Pose2 T_ga_gb = CellPoseFromMapPose(a.geometry(), b.geometry(), pair.hypotheses[h].T_a_b);
-    if (const auto centre_cells = OverlapCentre(a, b, T_ga_gb, 2)) {
-      at->second = b.geometry().T_map_grid() * (*centre_cells * b.geometry().resolution_m());
+    if (made) {
+      at->second =
+          OverlapAnchor(result.maps[pair.a], result.maps[pair.b], pair.hypotheses[h].T_a_b);
     }
     return at->second;
   };
