@@ -1,10 +1,11 @@
 // Joint refinement of the poses of all maps of one connected component (the fleet extension of
 // the paper): nodes are maps, edges are pairwise hypotheses T_a_b weighted by their omega.
 //
-// For an edge (a, b) with measurement T_ab = (p_ab, yaw_ab) the residual is, as in Ceres'
-// pose_graph_2d example,
-//   r = sqrt(omega) * [ R(yaw_a)^T (p_b - p_a) - p_ab ] / sigma_t
-//       sqrt(omega) * wrap(yaw_b - yaw_a - yaw_ab)      / sigma_yaw
+// For an edge (a, b) with measurement T_ab = (p_ab, yaw_ab) and anchor q (a point of b's frame,
+// anchor_b_m below) the residual is, as in Ceres' pose_graph_2d example with the translation
+// taken at q instead of at b's origin (q = 0 gives the example's),
+//   r = sqrt(omega) * [ R(yaw_a)^T (p_b + R(yaw_b) q - p_a) - (p_ab + R(yaw_ab) q) ] / sigma_t
+//       sqrt(omega) * wrap(yaw_b - yaw_a - yaw_ab)                              / sigma_yaw
 // under a robust loss; the reference node is held constant (the gauge).
 #pragma once
 
