@@ -6,6 +6,7 @@
 #include <mutex>
 #include <optional>
 
+#include "core/error.hpp"
 #include "core/hypothesis_generator.hpp"
 #include "core/map_features.hpp"
 #include "core/parallel.hpp"
@@ -40,23 +41,38 @@ PairOutcome ComputePair(const std::vector<std::unique_ptr<PreparedMap>>& maps, i
 
 std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
                                          const PairOptions& options, int threads,
-                                         const ProgressFn& progress, PairCache* cache) {
+                                         const ProgressFn& progress, PairCache* cache,
+                                         const FixedMapPairs* fixed_maps) {
   std::vector<std::pair<int, int>> jobs;
   for (int a = 0; a < static_cast<int>(maps.size()); ++a) {
     for (int b = a + 1; b < static_cast<int>(maps.size()); ++b) jobs.emplace_back(a, b);
   }
+  if (fixed_maps && fixed_maps->fixed.size() != maps.size()) {
+    throw Error("ComputeAllPairs: " + std::to_string(fixed_maps->fixed.size()) +
+                " fixed-map flags for " + std::to_string(maps.size()) + " maps");
+  }
+  const auto with_fixed_map = [&](std::size_t k) {
+    return fixed_maps && (fixed_maps->fixed[jobs[k].first] || fixed_maps->fixed[jobs[k].second]);
+  };
+  const auto options_of = [&](std::size_t k) -> const PairOptions& {
+    return with_fixed_map(k) ? fixed_maps->options : options;
+  };
   std::vector<PairOutcome> outcomes(jobs.size());
   std::vector<char> found(jobs.size(), 0);
   std::vector<ContentDigest> digests;
-  ContentDigest options_digest{};
+  ContentDigest options_digest[2] = {};  // without, with a fixed map
+  const auto options_digest_of = [&](std::size_t k) -> const ContentDigest& {
+    return options_digest[with_fixed_map(k) ? 1 : 0];
+  };
   if (cache) {
     digests.resize(maps.size());
     ParallelFor(maps.size(), threads, [&](std::size_t m) { digests[m] = MapDigest(maps[m]); });
-    options_digest = PairOptionsDigest(options, cache->version());
+    options_digest[0] = PairOptionsDigest(options, cache->version());
+    if (fixed_maps) options_digest[1] = PairOptionsDigest(fixed_maps->options, cache->version());
     ParallelFor(jobs.size(), threads, [&](std::size_t k) {
       const auto [a, b] = jobs[k];
       if (std::optional<PairOutcome> cached =
-              cache->FindPair(options_digest, digests[a], digests[b])) {
+              cache->FindPair(options_digest_of(k), digests[a], digests[b])) {
         outcomes[k] = std::move(*cached);
         outcomes[k].a = a;
         outcomes[k].b = b;
@@ -102,10 +118,10 @@ std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
     const auto [a, b] = jobs[k];
     prepare(a);
     prepare(b);
-    outcomes[k] = ComputePair(prepared, a, b, options);
+    outcomes[k] = ComputePair(prepared, a, b, options_of(k));
     release(a);
     release(b);
-    if (cache) cache->StorePair(options_digest, digests[a], digests[b], outcomes[k]);
+    if (cache) cache->StorePair(options_digest_of(k), digests[a], digests[b], outcomes[k]);
     const int finished = ++done;
     if (progress) {
       const std::lock_guard<std::mutex> lock(progress_mutex);

@@ -42,12 +42,22 @@ struct PairOutcome {
 
 class PairCache;  // pipeline/pair_cache.hpp
 
+// The pairs with a fixed map and how they are searched (FleetOptions::fixed_map_free_penalty).
+struct FixedMapPairs {
+  std::vector<char> fixed;  // one per map: 1 for a fixed map
+  PairOptions options;      // for a pair with at least one fixed map
+};
+
 // All pairs (a < b, in row order) of maps that share one resolution. threads <= 0: all cores.
-// With a cache, pairs found there are taken as they are, the others computed and stored, and
-// only the maps of computed pairs are prepared: the same outcomes as without it.
+// A pair with a map `fixed_maps` flags is searched with its options, the others with `options`;
+// the two may differ only in what a pair's search does with the maps, not in how each map is
+// prepared (pipeline/prepared_map.hpp). With a cache, pairs found there are taken as they are,
+// the others computed and stored, and only the maps of computed pairs are prepared: the same
+// outcomes as without it.
 std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
                                          const PairOptions& options, int threads,
                                          const ProgressFn& progress = {},
-                                         PairCache* cache = nullptr);
+                                         PairCache* cache = nullptr,
+                                         const FixedMapPairs* fixed_maps = nullptr);
 
 }  // namespace fleetmerge

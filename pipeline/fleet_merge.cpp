@@ -248,7 +248,14 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   // Hypotheses are ranked with the overlap an edge needs (HypothesisOptions::min_overlap_cells).
   PairOptions pair_options = options.pair;
   pair_options.hypotheses.min_overlap_cells = options.min_overlap_cells;
-  result.pairs = ComputeAllPairs(result.maps, pair_options, options.threads, progress, cache);
+  std::optional<FixedMapPairs> fixed_map_pairs;
+  if (!fixed.empty()) {
+    fixed_map_pairs.emplace(FixedMapPairs{std::vector<char>(maps.size(), 0), pair_options});
+    for (std::size_t m = 0; m < fixed.size(); ++m) fixed_map_pairs->fixed[m] = fixed[m] ? 1 : 0;
+    fixed_map_pairs->options.hypotheses.translation.free_penalty = options.fixed_map_free_penalty;
+  }
+  result.pairs = ComputeAllPairs(result.maps, pair_options, options.threads, progress, cache,
+                                 fixed_map_pairs ? &*fixed_map_pairs : nullptr);
   if (cache) cache->Close();  // trimmed and released: another job may use it while this one goes on
   result.timing.pairs_ms = MillisecondsSince(start);
 

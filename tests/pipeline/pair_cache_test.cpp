@@ -123,6 +123,15 @@ class PairCacheTest : public ::testing::Test {
   FleetResult Uncached(std::size_t count) const {
     return MergeFleet(FirstMaps(fleet_, count), 0, options_);
   }
+  // As Cached, with the first map fixed at the identity.
+  FleetResult CachedWithFixedFirst(std::size_t count, PairCacheStats& stats) const {
+    PairCache cache(dir_, kVersion, {});
+    FixedPoses fixed(count);
+    fixed[0] = Pose2();
+    FleetResult result = MergeFleet(FirstMaps(fleet_, count), 0, fixed, options_, {}, &cache);
+    stats = cache.stats();
+    return result;
+  }
   GroundTruthFleet fleet_;
   fs::path dir_;
   FleetOptions options_;
@@ -239,6 +248,23 @@ TEST_F(PairCacheTest, PairOptionsThatChangeHypothesesMissTheCache) {
   PairCacheStats decisions;
   Cached(3, decisions);
   EXPECT_EQ(decisions.pairs_cached, 3);
+}
+
+// A pair with a fixed map is searched with its own free penalty
+// (FleetOptions::fixed_map_free_penalty), so its entry is not another job's pair of the same
+// maps without the map fixed, and the other way round.
+TEST_F(PairCacheTest, PairsWithAFixedMapAreKeptApart) {
+  PairCacheStats fixed_first, not_fixed, fixed_again;
+  const FleetResult cached = CachedWithFixedFirst(3, fixed_first);
+  EXPECT_EQ(fixed_first.pairs_computed, 3);
+  Cached(3, not_fixed);
+  EXPECT_EQ(not_fixed.pairs_cached, 1);  // robot2-robot3: neither map fixed
+  EXPECT_EQ(not_fixed.pairs_computed, 2);
+  CachedWithFixedFirst(3, fixed_again);
+  EXPECT_EQ(fixed_again.pairs_cached, 3);
+  FixedPoses fixed(3);
+  fixed[0] = Pose2();
+  ExpectSameMerge(MergeFleet(FirstMaps(fleet_, 3), 0, fixed, options_), cached);
 }
 
 // The seed picks the points of random sampling and nothing else: with every point (the default)
