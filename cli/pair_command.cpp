@@ -162,6 +162,11 @@ CLI::App* AddPairCommand(CLI::App& app, PairCommand& command) {
   pair->add_option("--out", command.out_dir,
                    "also write the merged map of the best hypothesis into this folder");
   AddMethodOptions(*pair, command.options);
+  pair->add_option("--free-penalty", command.options.hypotheses.translation.free_penalty,
+                   "translation search: weight of a wall on the other map's open space "
+                   "(merge searches a fixed map's pairs with 0.25: a map inside a site map)")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
 
   return pair;
 }

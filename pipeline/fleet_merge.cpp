@@ -248,10 +248,11 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   // Hypotheses are ranked with the overlap an edge needs (HypothesisOptions::min_overlap_cells).
   PairOptions pair_options = options.pair;
   pair_options.hypotheses.min_overlap_cells = options.min_overlap_cells;
+  std::vector<char> fixed_maps;  // empty: none fixed
+  for (std::size_t m = 0; m < fixed.size(); ++m) fixed_maps.push_back(fixed[m] ? 1 : 0);
   std::optional<FixedMapPairs> fixed_map_pairs;
-  if (!fixed.empty()) {
-    fixed_map_pairs.emplace(FixedMapPairs{std::vector<char>(maps.size(), 0), pair_options});
-    for (std::size_t m = 0; m < fixed.size(); ++m) fixed_map_pairs->fixed[m] = fixed[m] ? 1 : 0;
+  if (!fixed_maps.empty()) {
+    fixed_map_pairs.emplace(FixedMapPairs{fixed_maps, pair_options});
     fixed_map_pairs->options.hypotheses.translation.free_penalty = options.fixed_map_free_penalty;
   }
   result.pairs = ComputeAllPairs(result.maps, pair_options, options.threads, progress, cache,
@@ -301,7 +302,7 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   // Each round rejects at least one edge, so this ends.
   for (std::size_t round = 0; round <= result.pairs.size(); ++round) {
     if (const auto weak = WeakestBridge(static_cast<int>(maps.size()), result.pairs,
-                                        options.min_bridge_wall_agreement)) {
+                                        options.min_bridge_wall_agreement, fixed_maps)) {
       RejectWeakBridge(options.min_bridge_wall_agreement, result.pairs[*weak]);
     } else {
       const auto verdicts =

@@ -14,7 +14,10 @@ double EdgeWalls(const PairOutcome& p) { return p.edge_hypothesis == 0 ? p.wall_
 }  // namespace
 
 std::optional<int> WeakestBridge(int map_count, const std::vector<PairOutcome>& pairs,
-                                 double min_wall_agreement) {
+                                 double min_wall_agreement, const std::vector<char>& fixed_maps) {
+  const auto with_fixed_map = [&](const PairOutcome& p) {
+    return !fixed_maps.empty() && (fixed_maps[p.a] || fixed_maps[p.b]);
+  };
   const std::vector<int> component_of = Components(map_count, pairs);
   std::vector<int> component_size(map_count, 0);
   for (const int c : component_of) ++component_size[c];
@@ -22,6 +25,7 @@ std::optional<int> WeakestBridge(int map_count, const std::vector<PairOutcome>& 
   for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
     const PairOutcome& p = pairs[k];
     if (!p.accepted || component_size[component_of[p.a]] < 3) continue;
+    if (p.edge_hypothesis == 0 && with_fixed_map(p)) continue;
     const double walls = EdgeWalls(p);
     if (walls >= min_wall_agreement) continue;
     if (weakest && walls >= EdgeWalls(pairs[*weakest])) continue;

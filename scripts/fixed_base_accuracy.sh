@@ -7,9 +7,8 @@
 # with the truth (its pose in the building composed with the base's pose): the yaw error and the
 # displacement of the centre of its map, in its cells.
 # Prints one line per case (robots, placed right, placed wrong, left out, worst yaw and
-# displacement of the placed ones, whether the base kept its pose exactly) and the totals;
-# willow-full-0.05 is printed apart (docs/accuracy.md: its identical corridors defeat the pair
-# search). Needs a build (scripts/build.sh) and ../shared/data/maps; about 2 minutes on 2 cores.
+# displacement of the placed ones, whether the base kept its pose exactly) and the totals.
+# Needs a build (scripts/build.sh) and ../shared/data/maps; about 2.5 minutes on 2 cores.
 # Usage: scripts/fixed_base_accuracy.sh [OUT_DIR] [ROBOTS]   (default out/fixed_base, 5)
 # FIXED_BASE_SEEDS replaces the seed list (default 1 to 10).
 set -euo pipefail
@@ -96,9 +95,6 @@ print(name, len(truth["maps"]), right, wrong, left_out, f"{worst_yaw_deg:.3f}", 
 PY
   done
 done | tee "$out/summary.txt"
-awk '$1 !~ /^willow/ {n += $2; r += $3; w += $4; l += $5; moved += ($8 != "base-exact")}
-     $1 ~ /^willow/ {wn += $2; wr += $3; ww += $4; wl += $5}
+awk '{n += $2; r += $3; w += $4; l += $5; moved += ($8 != "base-exact")}
      END {printf "fixed base: %d robots; within 1 deg and 3 cells %d (%.1f %%), placed wrong %d, left out %d; bases moved %d\n",
-          n, r, 100 * r / n, w, l, moved;
-          if (wn) printf "willow (apart): %d robots; right %d, wrong %d, left out %d\n", wn, wr, ww, wl}' \
-  "$out/summary.txt"
+          n, r, 100 * r / n, w, l, moved}' "$out/summary.txt"

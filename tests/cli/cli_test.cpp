@@ -110,6 +110,15 @@ TEST_F(CliTest, UsageErrorsExitNonZero) {
   EXPECT_NE(Fleetmerge("pair " + A() + " " + B() + " --translation sideways").exit_code, 0);
 }
 
+TEST_F(CliTest, FreePenaltyIsChecked) {
+  const auto bad = Fleetmerge("pair " + A() + " " + B() + " --free-penalty -1");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.both().find("--free-penalty"), std::string::npos) << bad.both();
+  const auto site = Fleetmerge("pair " + A() + " " + B() + " --free-penalty 0.25 --json");
+  ASSERT_EQ(site.exit_code, 0) << site.both();
+  EXPECT_GE(nlohmann::json::parse(site.out)["hypotheses"].size(), 1u);
+}
+
 TEST_F(CliTest, PaperMethodIsSelectable) {
   const auto run =
       Fleetmerge("pair " + A() + " " + B() + " --translation spectra --no-refine --json");

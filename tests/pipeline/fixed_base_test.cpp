@@ -206,6 +206,20 @@ TEST(FixedBase, PairsWithAPorousSiteMapFindEveryRobot) {
   EXPECT_EQ(right, 5);
 }
 
+TEST(FixedBase, RobotsOnAPorousSiteMapAreNotCutAsWeakBridges) {
+  // Willow, seed 7: every robot's pair with the base is right, with walls 0.84-0.89 (the grey
+  // walls the robots saw through), below min_bridge_wall_agreement. Each robot hangs on the base
+  // alone, and as weak bridges four of the five were left out.
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const BaseCase c = SimulateInBuilding("willow-full-0.05", 5, 7, 50.0);
+  FixedPoses fixed(1 + c.sim.maps.size());
+  fixed[0] = kT_merged_base;
+  const FleetResult result = MergeFleet(MapsOf(c), 0, fixed, FleetOptions{});
+  for (int r = 0; r < static_cast<int>(c.sim.maps.size()); ++r) {
+    ExpectNearTruth(c, result, r, "porous site map:");
+  }
+}
+
 TEST(FixedBase, SeveralFixedMapsNeverMove) {
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   const BaseCase c = SimulateInBuilding("aces3_austin", 4, 2);

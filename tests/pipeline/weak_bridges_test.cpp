@@ -75,6 +75,20 @@ TEST(WeakBridges, TwoMapComponentsAreExempt) {
   EXPECT_FALSE(WeakestBridge(5, pairs, kStandard).has_value());
 }
 
+TEST(WeakBridges, BridgesToAFixedMapOnTheirBestHypothesisAreExempt) {
+  // Map 0 fixed (a site map), robots 1 and 2 on it, robot 3 on robot 2: all below the standard.
+  std::vector<PairOutcome> pairs = {Edge(0, 1, 0.84), Edge(0, 2, 0.85), Edge(2, 3, 0.86)};
+  const std::vector<char> fixed = {1, 0, 0, 0};
+  EXPECT_EQ(WeakestBridge(4, pairs, kStandard), 0);         // nothing fixed: the weakest
+  EXPECT_EQ(WeakestBridge(4, pairs, kStandard, fixed), 2);  // only the robots' bridge
+  pairs[2].accepted = false;
+  EXPECT_FALSE(WeakestBridge(4, pairs, kStandard, fixed).has_value());
+  // An edge on another hypothesis was chosen by cycles, not by its search: not exempt.
+  pairs[1].hypotheses.push_back({Pose2(1.0, 0.0, 0.0), 0.93});
+  pairs[1].edge_hypothesis = 1;
+  EXPECT_EQ(WeakestBridge(4, pairs, kStandard, fixed), 1);
+}
+
 TEST(WeakBridges, BridgeOnAnotherHypothesisHasNoMeasuredWalls) {
   // The pair's walls belong to its best hypothesis; an edge on another one that is a bridge is
   // named whatever they are.
