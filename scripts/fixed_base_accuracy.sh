@@ -6,8 +6,10 @@
 # (7.3 m, -12.1 m, 0.6 rad)), and the robots. Each robot's pose in the merged frame is compared
 # with the truth (its pose in the building composed with the base's pose): the yaw error and the
 # displacement of the centre of its map, in its cells.
+# Each case also holds a robot of the next building in the list, which must be left out.
 # Prints one line per case (robots, placed right, placed wrong, left out, worst yaw and
-# displacement of the placed ones, whether the base kept its pose exactly) and the totals.
+# displacement of the placed ones, whether the base kept its pose exactly, whether the other
+# building's robot was placed: 0 or 1) and the totals.
 # Needs a build (scripts/build.sh) and ../shared/data/maps; about 2.5 minutes on 2 cores.
 # Usage: scripts/fixed_base_accuracy.sh [OUT_DIR] [ROBOTS]   (default out/fixed_base, 5)
 # FIXED_BASE_SEEDS replaces the seed list (default 1 to 10).
@@ -29,12 +31,17 @@ buildings="aces3_austin bookstore_tb3 gdc_floor1_full gdc_floor2_full intel_lab 
   mit_csail nav2_depot nav2_warehouse office_raw_rplidarA3 stata_basement turtlebot3_world_sim
   warehouse_002 willow-full-0.05"
 
-for building in $buildings; do
+# Each case also holds a robot of the next building in the list (simulate --foreign), which must
+# be left out.
+read -r -a list <<<"$(echo $buildings)"
+for index in "${!list[@]}"; do
+  building=${list[$index]}
+  foreign=${list[$(((index + 1) % ${#list[@]}))]}
   for seed in ${FIXED_BASE_SEEDS:-1 2 3 4 5 6 7 8 9 10}; do
     dir=$out/${building}_$seed
     rm -rf "$dir"
     "$fleetmerge" simulate "$dir" --building "$maps/$building.yaml" --robots "$robots" \
-      --seed "$seed" >/dev/null
+      --seed "$seed" --foreign "$maps/$foreign.yaml" >/dev/null
     /usr/bin/python3 - "$dir" "$(realpath "$maps/$building.yaml")" "$seed" <<'PY'
 import sys, yaml
 case, base, seed = sys.argv[1], sys.argv[2], int(sys.argv[3])
@@ -71,10 +78,14 @@ def map_centre(yaml_path):  # the centre of the map's image, in its map frame
     ox, oy = meta["origin"][0], meta["origin"][1]
     return (ox + width * meta["resolution"] / 2, oy + height * meta["resolution"] / 2), meta["resolution"]
 
-right = wrong = left_out = 0
+right = wrong = left_out = foreign_placed = robots = 0
 worst_yaw_deg = worst_cells = 0.0
 for m in truth["maps"]:
     got = placed[m["name"]]
+    if m["building"] != "building":  # the robot of another building
+        foreign_placed += got["component"] == base["component"]
+        continue
+    robots += 1
     if got["component"] != base["component"]:
         left_out += 1
         continue
@@ -90,11 +101,11 @@ for m in truth["maps"]:
     else:
         wrong += 1
 exact = (base["pose"]["x"], base["pose"]["y"], base["pose"]["yaw"]) == (bx, by, byaw)
-print(name, len(truth["maps"]), right, wrong, left_out, f"{worst_yaw_deg:.3f}", f"{worst_cells:.2f}",
-      "base-exact" if exact else "BASE-MOVED")
+print(name, robots, right, wrong, left_out, f"{worst_yaw_deg:.3f}", f"{worst_cells:.2f}",
+      "base-exact" if exact else "BASE-MOVED", foreign_placed)
 PY
   done
 done | tee "$out/summary.txt"
-awk '{n += $2; r += $3; w += $4; l += $5; moved += ($8 != "base-exact")}
-     END {printf "fixed base: %d robots; within 1 deg and 3 cells %d (%.1f %%), placed wrong %d, left out %d; bases moved %d\n",
-          n, r, 100 * r / n, w, l, moved}' "$out/summary.txt"
+awk '{n += $2; r += $3; w += $4; l += $5; moved += ($8 != "base-exact"); f += $9; cases++}
+     END {printf "fixed base: %d robots; within 1 deg and 3 cells %d (%.1f %%), placed wrong %d, left out %d; bases moved %d; robots of another building placed %d of %d\n",
+          n, r, 100 * r / n, w, l, moved, f, cases}' "$out/summary.txt"
