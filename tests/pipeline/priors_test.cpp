@@ -328,13 +328,16 @@ CorridorSite Corridor() {
 
 TEST(Priors, APairThatFailsTheThresholdsAnywayIsNotRefusedByThem) {
   FLEETMERGE_REQUIRE_SHARED_MAPS();
-  const CorridorSite site = Corridor();
+  CorridorSite site = Corridor();
+  // Tight enough that every hypothesis of site-run4 contradicts it: the one nearest the site's
+  // pose (the fixed map's pair search, FleetOptions::fixed_map_free_penalty) is 0.66 m off.
+  site.priors[3] = PosePrior{Pose2(10.0, 5.0, 0.0), 0.1, 0.02};
   const FleetResult result = MergeFleet(site.maps(), 0, site.fixed, site.priors, FleetOptions{});
   const PairOutcome& site_run4 = result.pairs[2];  // (0, 1), (0, 2), (0, 3), ...
   ASSERT_EQ(site_run4.b, 3);
   std::printf("site-run4: %s\n", site_run4.note.c_str());
   EXPECT_FALSE(site_run4.accepted);
-  EXPECT_FALSE(site_run4.refused_by_priors);  // its best omega is 0.54: no pair either way
+  EXPECT_FALSE(site_run4.refused_by_priors);  // its best omega is 0.83: no pair either way
   EXPECT_EQ(site_run4.note.rfind("best omega below the threshold; also, every hypothesis "
                                  "contradicts the fixed pose of map 1 and initial_pose of map 4",
                                  0),
