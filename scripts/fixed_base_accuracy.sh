@@ -10,7 +10,7 @@
 # Prints one line per case (robots, placed right, placed wrong, left out, worst yaw and
 # displacement of the placed ones, whether the base kept its pose exactly, whether the other
 # building's robot was placed: 0 or 1) and the totals.
-# Needs a build (scripts/build.sh) and ../shared/data/maps; about 2.5 minutes on 2 cores.
+# Needs a build (scripts/build.sh) and ../shared/data/maps; about 3 minutes on 2 cores.
 # Usage: scripts/fixed_base_accuracy.sh [OUT_DIR] [ROBOTS]   (default out/fixed_base, 5)
 # FIXED_BASE_SEEDS replaces the seed list (default 1 to 10).
 set -euo pipefail
@@ -24,12 +24,8 @@ if [ ! -d "$maps" ]; then
   exit 1
 fi
 mkdir -p "$out"
-# The whole buildings: not the partial runs of one floor (robotis_corridor_run*, lab_pair_demo_*),
-# not the same building twice (intel_lab_10cm_grey, willow-full-0.10), not the 4 x 4 m maze arena
-# (smaller than min_overlap_cells: nothing in it can be merged with the defaults).
-buildings="aces3_austin bookstore_tb3 gdc_floor1_full gdc_floor2_full intel_lab mit_building_31
-  mit_csail nav2_depot nav2_warehouse office_raw_rplidarA3 stata_basement turtlebot3_world_sim
-  warehouse_002 willow-full-0.05"
+source scripts/whole_buildings.sh
+buildings=$whole_buildings
 
 # Each case also holds a robot of the next building in the list (simulate --foreign), which must
 # be left out.

@@ -19,9 +19,8 @@ if [ ! -d "$maps" ]; then
   exit 1
 fi
 mkdir -p "$out"
-buildings="aces3_austin bookstore_tb3 gdc_floor1_full gdc_floor2_full intel_lab mit_building_31
-  mit_csail nav2_depot nav2_warehouse office_raw_rplidarA3 stata_basement turtlebot3_world_sim
-  warehouse_002 willow-full-0.05"
+source scripts/whole_buildings.sh
+buildings=$whole_buildings
 for building in $buildings; do
   for seed in ${FIXED_BASE_SEEDS:-1 2 3 4 5 6 7 8 9 10}; do
     dir=$out/${building}_$seed

@@ -76,6 +76,13 @@ void ExpectNearTruth(const BaseCase& c, const FleetResult& result, int r, const 
   EXPECT_LT(cells, max_cells) << what << " robot" << r + 1;
 }
 
+// The base fixed at kT_merged_base, the robots free.
+FixedPoses BaseFixed(const BaseCase& c) {
+  FixedPoses fixed(1 + c.sim.maps.size());
+  fixed[0] = kT_merged_base;
+  return fixed;
+}
+
 // Robot rb relative to robot ra against the truth (whichever fixed map they followed).
 void ExpectRelativeNearTruth(const BaseCase& c, const FleetResult& result, int ra, int rb) {
   const OccupancyGrid& robot = c.sim.maps[rb];
@@ -134,8 +141,7 @@ void ExpectBaseCellForCell(const BaseCase& c, const FleetResult& result) {
 TEST(FixedBase, RobotsInARealBuildingLandOnItsFixedMap) {
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   const BaseCase c = SimulateInBuilding("gdc_floor1_full", 4, 1);
-  FixedPoses fixed(1 + c.sim.maps.size());
-  fixed[0] = kT_merged_base;
+  const FixedPoses fixed = BaseFixed(c);
   const FleetResult result = MergeFleet(MapsOf(c), 0, fixed, FleetOptions{});
   std::printf("pairs %.0f ms, refine %.0f ms, composite %.0f ms\n", result.timing.pairs_ms,
               result.timing.refine_ms, result.timing.composite_ms);
@@ -158,8 +164,7 @@ TEST(FixedBase, RobotsStayWhereTheirPairsWithTheBasePutThem) {
   // Release) and 1.0 in the sanitizer build (Clang: its simulated maps differ slightly).
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   const BaseCase c = SimulateInBuilding("aces3_austin", 5, 9, 50.0);
-  FixedPoses fixed(1 + c.sim.maps.size());
-  fixed[0] = kT_merged_base;
+  const FixedPoses fixed = BaseFixed(c);
   const FleetResult result = MergeFleet(MapsOf(c), 0, fixed, FleetOptions{});
   for (int r = 0; r < static_cast<int>(c.sim.maps.size()); ++r) {
     ExpectNearTruth(c, result, r, "edges at the overlaps:", 1.5);
@@ -194,8 +199,7 @@ TEST(FixedBase, PairsWithAPorousSiteMapFindEveryRobot) {
   // it wholly, so its pairs with the fixed map are searched with fixed_map_free_penalty.
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   const BaseCase c = SimulateInBuilding("willow-full-0.05", 5, 1, 50.0);
-  FixedPoses fixed(1 + c.sim.maps.size());
-  fixed[0] = kT_merged_base;
+  const FixedPoses fixed = BaseFixed(c);
   FleetOptions robot_penalty;
   robot_penalty.fixed_map_free_penalty = robot_penalty.pair.hypotheses.translation.free_penalty;
   const int right_before =
@@ -212,8 +216,7 @@ TEST(FixedBase, RobotsOnAPorousSiteMapAreNotCutAsWeakBridges) {
   // alone, and as weak bridges four of the five were left out.
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   const BaseCase c = SimulateInBuilding("willow-full-0.05", 5, 7, 50.0);
-  FixedPoses fixed(1 + c.sim.maps.size());
-  fixed[0] = kT_merged_base;
+  const FixedPoses fixed = BaseFixed(c);
   const FleetResult result = MergeFleet(MapsOf(c), 0, fixed, FleetOptions{});
   for (int r = 0; r < static_cast<int>(c.sim.maps.size()); ++r) {
     ExpectNearTruth(c, result, r, "porous site map:");
