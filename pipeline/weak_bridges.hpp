@@ -19,7 +19,7 @@
 // map was searched for inside the whole building (FleetOptions::fixed_map_free_penalty), not a
 // chance overlap of two parts. Robots simulated in 14 real buildings against the building's map
 // (700 pairs, `scripts/fixed_base_accuracy.sh`): the one wrong best hypothesis had omega 0.89 and
-// walls 0.18, while 36 of Willow Garage's 50 right ones had walls 0.83-0.89 and were cut.
+// walls 0.18, while 36 of Willow Garage's 50 right ones have walls 0.83-0.89 and would be cut.
 // The robot of the next building that each of those 140 cases holds had a pair with the base
 // of walls 0.72 at most (a Nav2 warehouse robot in the Nav2 depot), and none was accepted.
 #pragma once
