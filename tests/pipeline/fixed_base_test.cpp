@@ -58,22 +58,28 @@ Pose2 TrueT_merged_robot(const BaseCase& c, int r) {
   return kT_merged_base * c.sim.truth.maps[r].T_building_map;
 }
 
-// Yaw error and the displacement (in cells) of the centre of the robot's known cells.
-void ExpectNearTruth(const BaseCase& c, const FleetResult& result, int r, const char* what,
-                     double max_cells = 3.0) {
-  const OccupancyGrid& robot = c.sim.maps[r];
-  const Pose2 truth = TrueT_merged_robot(c, r);
-  const Pose2& estimate = result.T_component_map[r + 1];
+// How far `estimate` puts a robot's map from `truth` (two poses of its frame in one frame): the
+// yaw error, and the displacement of the centre of its known cells in its cells.
+struct RobotError {
+  double yaw_deg = 0.0;
+  double cells = 0.0;
+};
+RobotError ErrorOf(const OccupancyGrid& robot, const Pose2& estimate, const Pose2& truth) {
   const cv::Rect known = cv::boundingRect(robot.cells());
   const Eigen::Vector2d centre =
       robot.geometry().CellCenter({known.x + known.width / 2, known.y + known.height / 2});
-  const double yaw_deg = std::abs(WrapAngle(estimate.yaw_rad() - truth.yaw_rad())) / kDeg;
-  const double cells =
-      (estimate * centre - truth * centre).norm() / robot.geometry().resolution_m();
-  std::printf("%s robot%d: %.3f deg, %.2f cells\n", what, r + 1, yaw_deg, cells);
+  return {std::abs(WrapAngle(estimate.yaw_rad() - truth.yaw_rad())) / kDeg,
+          (estimate * centre - truth * centre).norm() / robot.geometry().resolution_m()};
+}
+
+void ExpectNearTruth(const BaseCase& c, const FleetResult& result, int r, const char* what,
+                     double max_cells = 3.0) {
+  const RobotError e =
+      ErrorOf(c.sim.maps[r], result.T_component_map[r + 1], TrueT_merged_robot(c, r));
+  std::printf("%s robot%d: %.3f deg, %.2f cells\n", what, r + 1, e.yaw_deg, e.cells);
   EXPECT_EQ(result.component_of[r + 1], result.component_of[0]) << what << " robot" << r + 1;
-  EXPECT_LT(yaw_deg, 1.0) << what << " robot" << r + 1;
-  EXPECT_LT(cells, max_cells) << what << " robot" << r + 1;
+  EXPECT_LT(e.yaw_deg, 1.0) << what << " robot" << r + 1;
+  EXPECT_LT(e.cells, max_cells) << what << " robot" << r + 1;
 }
 
 // The base fixed at kT_merged_base, the robots free.
@@ -85,15 +91,12 @@ FixedPoses BaseFixed(const BaseCase& c) {
 
 // Robot rb relative to robot ra against the truth (whichever fixed map they followed).
 void ExpectRelativeNearTruth(const BaseCase& c, const FleetResult& result, int ra, int rb) {
-  const OccupancyGrid& robot = c.sim.maps[rb];
   const Pose2 truth = TrueT_merged_robot(c, ra).inverse() * TrueT_merged_robot(c, rb);
   const Pose2 estimate = result.T_component_map[ra + 1].inverse() * result.T_component_map[rb + 1];
-  const cv::Rect known = cv::boundingRect(robot.cells());
-  const Eigen::Vector2d centre =
-      robot.geometry().CellCenter({known.x + known.width / 2, known.y + known.height / 2});
+  const RobotError e = ErrorOf(c.sim.maps[rb], estimate, truth);
   EXPECT_EQ(result.component_of[ra + 1], result.component_of[rb + 1]);
-  EXPECT_LT(std::abs(WrapAngle(estimate.yaw_rad() - truth.yaw_rad())), 1.0 * kDeg);
-  EXPECT_LT((estimate * centre - truth * centre).norm(), 3.0 * robot.geometry().resolution_m());
+  EXPECT_LT(e.yaw_deg, 1.0);
+  EXPECT_LT(e.cells, 3.0);
 }
 
 // The base's cells as they are, on the same cells (moved by its pose), where no robot knows one.
@@ -178,16 +181,10 @@ int BasePairsRight(const BaseCase& c, const FleetResult& result, const char* wha
   for (const PairOutcome& pair : result.pairs) {
     if (pair.a != 0 || pair.hypotheses.empty()) continue;
     const int r = pair.b - 1;
-    const OccupancyGrid& robot = c.sim.maps[r];
-    const Pose2 truth = c.sim.truth.maps[r].T_building_map;
-    const Pose2& best = pair.hypotheses.front().T_a_b;
-    const cv::Rect known = cv::boundingRect(robot.cells());
-    const Eigen::Vector2d centre =
-        robot.geometry().CellCenter({known.x + known.width / 2, known.y + known.height / 2});
-    const double yaw_deg = std::abs(WrapAngle(best.yaw_rad() - truth.yaw_rad())) / kDeg;
-    const double cells = (best * centre - truth * centre).norm() / robot.geometry().resolution_m();
-    std::printf("%s base-robot%d: %.3f deg, %.2f cells\n", what, r + 1, yaw_deg, cells);
-    if (yaw_deg < 1.0 && cells < 3.0) ++right;
+    const RobotError e =
+        ErrorOf(c.sim.maps[r], pair.hypotheses.front().T_a_b, c.sim.truth.maps[r].T_building_map);
+    std::printf("%s base-robot%d: %.3f deg, %.2f cells\n", what, r + 1, e.yaw_deg, e.cells);
+    if (e.yaw_deg < 1.0 && e.cells < 3.0) ++right;
   }
   return right;
 }
