@@ -15,17 +15,8 @@
 # FIXED_BASE_SEEDS replaces the seed list (default 1 to 10).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-fleetmerge=${BUILD_DIR:-build}/cli/fleetmerge
-maps=../shared/data/maps
-out=${1:-out/fixed_base}
+source scripts/fixed_base_cases.sh fixed_base_accuracy "${1:-out/fixed_base}"
 robots=${2:-5}
-if [ ! -d "$maps" ]; then
-  echo "fixed_base_accuracy: $maps is missing (the real building maps)" >&2
-  exit 1
-fi
-mkdir -p "$out"
-source scripts/whole_buildings.sh
-buildings=$whole_buildings
 
 # Each case also holds a robot of the next building in the list (simulate --foreign), which must
 # be left out.
@@ -33,7 +24,7 @@ read -r -a list <<<"$(echo $buildings)"
 for index in "${!list[@]}"; do
   building=${list[$index]}
   foreign=${list[$(((index + 1) % ${#list[@]}))]}
-  for seed in ${FIXED_BASE_SEEDS:-1 2 3 4 5 6 7 8 9 10}; do
+  for seed in $seeds; do
     dir=$out/${building}_$seed
     rm -rf "$dir"
     "$fleetmerge" simulate "$dir" --building "$maps/$building.yaml" --robots "$robots" \

@@ -10,19 +10,10 @@
 # scripts/fixed_base_accuracy.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-fleetmerge=${BUILD_DIR:-build}/cli/fleetmerge
-maps=../shared/data/maps
-out=${1:-out/fixed_base_penalty}
+source scripts/fixed_base_cases.sh fixed_base_penalty "${1:-out/fixed_base_penalty}"
 penalties=${2:-2.0 0.5 0.25}
-if [ ! -d "$maps" ]; then
-  echo "fixed_base_penalty: $maps is missing (the real building maps)" >&2
-  exit 1
-fi
-mkdir -p "$out"
-source scripts/whole_buildings.sh
-buildings=$whole_buildings
 for building in $buildings; do
-  for seed in ${FIXED_BASE_SEEDS:-1 2 3 4 5 6 7 8 9 10}; do
+  for seed in $seeds; do
     dir=$out/${building}_$seed
     rm -rf "$dir"
     "$fleetmerge" simulate "$dir" --building "$maps/$building.yaml" --robots 5 --seed "$seed" \
