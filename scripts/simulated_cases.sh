@@ -1,9 +1,11 @@
-# Sourced by scripts/heldout_accuracy.sh and scripts/lookalike_accuracy.sh (from the repository
-# root): simulated cases merged with the build's fleetmerge and scored against their truth.
+# Sourced by scripts/heldout_accuracy.sh, scripts/lookalike_accuracy.sh and
+# scripts/fixed_base_cases.sh (from the repository root): simulated cases merged with the build's
+# fleetmerge and scored against their truth.
 # Usage: source scripts/simulated_cases.sh SCRIPT_NAME OUT_DIR
-# Sets fleetmerge, maps and out, and defines run_case NAME SIMULATE_OPTIONS..., which prints one
-# line: name, truly overlapping pairs, coarse, fine, false merges.
-fleetmerge=./build/cli/fleetmerge
+# Sets fleetmerge (BUILD_DIR's, default build), maps and out, and defines run_case NAME
+# SIMULATE_OPTIONS..., which prints one line: name, truly overlapping pairs, coarse, fine, false
+# merges.
+fleetmerge=${BUILD_DIR:-build}/cli/fleetmerge
 maps=../shared/data/maps
 out=$2
 if [ ! -d "$maps" ]; then
