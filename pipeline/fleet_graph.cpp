@@ -181,10 +181,50 @@ class Solver {
   std::vector<std::optional<Pose2>> poses_;
 };
 
+// pairs[worst], taken out (accepted false) with no other hypothesis that agrees, has walls of at
+// least `weak_wall_agreement` on its edge's hypothesis. Its weakest neighbour (an accepted pair of
+// one of its maps, with walls below `weak_wall_agreement`) is rejected instead, and pairs[worst]
+// kept, when the poses solved without that neighbour agree with pairs[worst]. Returns whether it
+// did. Why: the solve can side with a weak edge that is a few cells off (a corridor's aliasing,
+// within the triangles' doubled tolerances), and then the strong edge beside it is the one whose
+// residual is too large. Walls are the pairs' evidence of being right (the triangles' tie-break).
+bool BlameAWeakNeighbour(Solver& solver, std::vector<PairOutcome>& pairs, int worst, int reference,
+                         const PoseGraphOptions& options, bool in_site,
+                         double weak_wall_agreement) {
+  PairOutcome& pair = pairs[worst];
+  const int hypothesis = pair.edge_hypothesis;
+  const double walls = pair.hypotheses[hypothesis].wall_agreement;
+  if (walls < weak_wall_agreement) return false;
+  int weakest = -1;
+  double weakest_walls = weak_wall_agreement;
+  for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
+    const PairOutcome& p = pairs[k];
+    if (k == worst || !p.accepted) continue;
+    if (p.a != pair.a && p.a != pair.b && p.b != pair.a && p.b != pair.b) continue;
+    const double w = p.hypotheses[p.edge_hypothesis].wall_agreement;
+    if (w < weakest_walls) weakest = k, weakest_walls = w;
+  }
+  if (weakest < 0) return false;
+  PairOutcome& weak = pairs[weakest];
+  pair.accepted = true;
+  weak.accepted = false;
+  if (Violation(EdgeOf(pair), solver.Solve(pairs, reference, in_site), options) > 1.0) {
+    weak.accepted = true;
+    pair.accepted = false;
+    return false;
+  }
+  std::ostringstream note;
+  note << "rejected: hypothesis " << weak.edge_hypothesis + 1 << " (walls " << weakest_walls
+       << ") disagrees with a pair of one of its maps with stronger walls (" << walls
+       << "), which agrees with its cycles without it";
+  weak.note = note.str();
+  return true;
+}
+
 // Takes out the worst inconsistent edge of the component of `reference`; returns false when
 // every edge agrees with the poses.
 bool FixWorstEdge(Solver& solver, std::vector<PairOutcome>& pairs, int reference,
-                  const PoseGraphOptions& options, bool in_site) {
+                  const PoseGraphOptions& options, bool in_site, double weak_wall_agreement) {
   const auto poses = solver.Solve(pairs, reference, in_site);
   int worst = -1;
   double worst_violation = 1.0;
@@ -208,6 +248,9 @@ bool FixWorstEdge(Solver& solver, std::vector<PairOutcome>& pairs, int reference
                   " disagreed with its cycles; replaced by hypothesis " + std::to_string(h + 1);
       return true;
     }
+  }
+  if (BlameAWeakNeighbour(solver, pairs, worst, reference, options, in_site, weak_wall_agreement)) {
+    return true;
   }
   std::ostringstream note;
   note << "rejected: hypothesis " << rejected_hypothesis + 1
@@ -348,7 +391,8 @@ int ComponentReference(const std::vector<int>& component_of, int c, int referenc
 
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
                            const PoseGraphOptions& options, const FixedPoses& fixed,
-                           const PosePriors& priors, const EdgeAnchor& anchor) {
+                           const PosePriors& priors, const EdgeAnchor& anchor,
+                           double weak_wall_agreement) {
   FleetGraph graph;
   const Known known{fixed, priors, anchor};
   Solver solver(map_count, options, known);
@@ -362,7 +406,7 @@ FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int r
     for (int c = 0, n = 1 + *std::max_element(graph.component_of.begin(), graph.component_of.end());
          c < n && !changed; ++c) {
       changed = FixWorstEdge(solver, pairs, ComponentReference(graph.component_of, c, reference),
-                             options, c == site);
+                             options, c == site, weak_wall_agreement);
     }
     if (!changed) break;
   }

@@ -7,7 +7,8 @@
 // maximum-omega spanning tree, one Ceres problem over all poses (refine/pose_graph.hpp), then
 // the edge that most disagrees with its cycles is taken out; if one of that pair's other
 // hypotheses agrees with the poses solved without it, that hypothesis replaces it, else the pair
-// is rejected; repeat until every edge agrees. A bridge edge has no cycle to check it.
+// is rejected, unless its walls are strong and rejecting a weak edge beside it instead makes it
+// agree; repeat until every edge agrees. A bridge edge has no cycle to check it.
 #pragma once
 
 #include <functional>
@@ -60,8 +61,14 @@ using EdgeAnchor = std::function<Eigen::Vector2d(const PairOutcome& pair, int hy
 // than the largest, the reference's on a tie), by its members' priors. Prior edges are never taken
 // out by the cycle checks: the pairs that contradict the priors were dropped before
 // (pipeline/pose_priors.hpp). Without priors and fixed maps nothing of this applies.
+//
+// `weak_wall_agreement` (FleetOptions::min_bridge_wall_agreement in a merge; 0: never) splits
+// edges into weak and strong by the wall agreement of their hypothesis: when the cycle checks
+// would reject a strong edge, a weak edge of one of its maps is rejected instead if the strong
+// one then agrees.
 FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int reference,
                            const PoseGraphOptions& options, const FixedPoses& fixed = {},
-                           const PosePriors& priors = {}, const EdgeAnchor& anchor = {});
+                           const PosePriors& priors = {}, const EdgeAnchor& anchor = {},
+                           double weak_wall_agreement = 0.0);
 
 }  // namespace fleetmerge

@@ -290,8 +290,9 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
     }
     return at->second;
   };
-  FleetGraph graph = SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference,
-                                     options.pose_graph, fixed, priors, anchor);
+  FleetGraph graph =
+      SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph,
+                      fixed, priors, anchor, options.min_bridge_wall_agreement);
   // Made once, in parallel: every round judges the pairs again.
   std::vector<std::optional<MapWalls>> made(result.maps.size());
   ParallelFor(made.size(), options.threads,
@@ -316,8 +317,9 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
         if (!split || !CutSplit(*split, result.pairs, options.map_names)) break;
       }
     }
-    graph = SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference,
-                            options.pose_graph, fixed, priors, anchor);
+    graph =
+        SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph,
+                        fixed, priors, anchor, options.min_bridge_wall_agreement);
   }
   result.component_of = graph.component_of;
   result.T_component_map = graph.T_component_map;

@@ -220,6 +220,19 @@ TEST(FixedBase, RobotsOnAPorousSiteMapAreNotCutAsWeakBridges) {
   }
 }
 
+TEST(FixedBase, ARobotRightOnTheSiteMapIsNotCutForAWeakRobotPair) {
+  // MIT CSAIL, 4 robots, seed 4: robot4's pair with the base is right (walls 0.99 over 91,000
+  // cells); its pair with robot3 is 0.46 m off (walls 0.80 over 6,000 cells), within the
+  // triangles' doubled tolerance. The solve sided with the robot pair, the base pair was the edge
+  // in error, and robot4 was left out: the robot pair is rejected instead.
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const BaseCase c = SimulateInBuilding("mit_csail", 4, 4, 50.0);
+  const FleetResult result = MergeFleet(MapsOf(c), 0, BaseFixed(c), FleetOptions{});
+  for (int r = 0; r < static_cast<int>(c.sim.maps.size()); ++r) {
+    ExpectNearTruth(c, result, r, "weak robot pair:");
+  }
+}
+
 TEST(FixedBase, SeveralFixedMapsNeverMove) {
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   const BaseCase c = SimulateInBuilding("aces3_austin", 4, 2);

@@ -233,5 +233,45 @@ TEST(FleetGraph, AWrongEdgeWithoutAnAgreeingAlternativeIsRejected) {
   EXPECT_LT(RelativeError(est, truth), 1e-3);
 }
 
+TEST(FleetGraph, AStrongEdgeIsKeptWhereAWeakEdgeBesideItIsOff) {
+  // Three maps. Pair 1-2 is 0.4 m off (a corridor's aliasing: within the triangle's doubled
+  // tolerance, beyond an edge's 0.25 m) with weak walls (0.80); pair 0-2 is right with strong walls
+  // (0.99) but a low omega. The solve then sides with 1-2, and 0-2 is the edge in error.
+  std::mt19937 rng(8);
+  const auto truth = RandomPoses(3, rng);
+  const auto outcomes = [&] {
+    std::vector<PairOutcome> pairs = {Outcome(0, 1, truth, std::nullopt),
+                                      Outcome(0, 2, truth, std::nullopt),
+                                      Outcome(1, 2, truth, std::nullopt)};
+    for (PairOutcome& p : pairs) {
+      p.hypotheses.resize(1);  // the truth only
+      p.hypotheses[0].wall_agreement = 0.99;
+    }
+    pairs[1].hypotheses[0].omega = 0.05;
+    pairs[2].hypotheses[0].T_a_b = pairs[2].hypotheses[0].T_a_b * Pose2(0.4, 0.0, 0.0);
+    pairs[2].hypotheses[0].wall_agreement = 0.80;
+    return pairs;
+  };
+  const auto error_of_map2_m = [&](const FleetGraph& graph) {
+    const Pose2 T_0_2 = graph.T_component_map[0].inverse() * graph.T_component_map[2];
+    return ((truth[0].inverse() * truth[2]).inverse() * T_0_2).translation_m().norm();
+  };
+
+  // With the rule off (no edge is weak), the edge in error is rejected: map 2 follows the weak
+  // edge.
+  std::vector<PairOutcome> plain = outcomes();
+  const FleetGraph plain_graph = SolveFleetGraph(3, plain, 0, PoseGraphOptions{});
+  EXPECT_FALSE(plain[1].accepted) << plain[1].note;
+  EXPECT_NEAR(error_of_map2_m(plain_graph), 0.4, 0.05);
+
+  std::vector<PairOutcome> pairs = outcomes();
+  const FleetGraph graph = SolveFleetGraph(3, pairs, 0, PoseGraphOptions{}, {}, {}, {}, 0.89);
+  EXPECT_TRUE(pairs[0].accepted) << pairs[0].note;
+  EXPECT_TRUE(pairs[1].accepted) << pairs[1].note;
+  EXPECT_FALSE(pairs[2].accepted);
+  EXPECT_NE(pairs[2].note.find("stronger walls (0.99)"), std::string::npos) << pairs[2].note;
+  EXPECT_LT(error_of_map2_m(graph), 1e-3);
+}
+
 }  // namespace
 }  // namespace fleetmerge
