@@ -51,7 +51,7 @@ std::vector<PairVerdict> JudgeSolvedPairs(const std::vector<OccupancyGrid>& maps
     const double wall_agreement = SymmetricWallAgreement(walls[a], walls[b], T_ga_gb);
     const bool agrees =
         SomeHypothesisAgrees(pair, a, T_a_b, options) || wall_agreement >= min_wall_agreement;
-    judged[k] = PairVerdict{a, b, agrees, wall_agreement};
+    judged[k] = PairVerdict{a, b, agrees, wall_agreement, 4 * (overlap.agree + overlap.disagree)};
   });
   std::vector<PairVerdict> verdicts;
   for (const auto& v : judged) {
@@ -71,6 +71,7 @@ ComponentSplit CrossVerdicts(const std::vector<PairVerdict>& inside,
   for (const PairVerdict& v : inside) {
     if (side[v.a] == side[v.b]) continue;
     (v.agrees ? split.supporters : split.conflicts)++;
+    (v.agrees ? split.supporter_cells : split.conflict_cells) += v.overlap_cells;
     if (v.agrees) split.supporter_walls += v.wall_agreement;
   }
   const bool named = 2 * side_size <= static_cast<int>(members.size());
@@ -83,6 +84,9 @@ ComponentSplit CrossVerdicts(const std::vector<PairVerdict>& inside,
 bool Better(const ComponentSplit& candidate, const std::optional<ComponentSplit>& best) {
   const int margin = candidate.conflicts - candidate.supporters;
   if (margin <= 0) return false;
+  // The supporters overlap on more cells: one pair that agrees over most of a map outweighs a
+  // few that disagree over slivers of it (where racks or walls seen from the other side differ).
+  if (candidate.supporter_cells > candidate.conflict_cells) return false;
   if (!best) return true;
   const int best_margin = best->conflicts - best->supporters;
   if (margin != best_margin) return margin > best_margin;

@@ -95,8 +95,10 @@ bool CutSplit(const ComponentSplit& split, std::vector<PairOutcome>& pairs,
     p.accepted = false;
     p.edge_hypothesis = -1;
     p.note = "rejected: the placement of map(s) " + names + " is contradicted by " +
-             std::to_string(split.conflicts) + " of the pairs that then overlap, supported by " +
-             std::to_string(split.supporters);
+             std::to_string(split.conflicts) + " of the pairs that then overlap (on " +
+             std::to_string(split.conflict_cells) + " cells), supported by " +
+             std::to_string(split.supporters) + " (on " + std::to_string(split.supporter_cells) +
+             " cells)";
     cut = true;
   }
   return cut;

@@ -130,6 +130,21 @@ TEST(Corroboration, LoneMapIsSplitOffByMajorityAndTiesKeepIt) {
   EXPECT_FALSE(MostContradictedSplit({}, {0, 0}));
 }
 
+TEST(Corroboration, SupportOverMoreCellsKeepsTheMap) {
+  // Map 3 conflicts with maps 0 and 1 over slivers (7,000 and 9,000 cells) and agrees with map 2
+  // over most of it (86,000): it stays. Where the conflicts cover more cells, it is split off.
+  std::vector<PairVerdict> verdicts = {{0, 1, true, 0.99, 100000}, {0, 2, true, 0.99, 90000},
+                                       {1, 2, true, 0.99, 80000},  {0, 3, false, 0.5, 7000},
+                                       {1, 3, false, 0.6, 9000},   {2, 3, true, 0.97, 86000}};
+  EXPECT_FALSE(MostContradictedSplit(verdicts, {0, 0, 0, 0}));
+  verdicts.back().overlap_cells = 12000;
+  const auto split = MostContradictedSplit(verdicts, {0, 0, 0, 0});
+  ASSERT_TRUE(split.has_value());
+  EXPECT_EQ(split->detached, std::vector<int>{3});
+  EXPECT_EQ(split->conflict_cells, 16000);
+  EXPECT_EQ(split->supporter_cells, 12000);
+}
+
 TEST(Corroboration, GroupJoinedByConsistentWrongEdgesIsSplitOff) {
   // Maps 0-2 of one building, 3-4 of another that agree with each other and (by chance, weaker
   // walls) with map 0; maps 1 and 2 contradict both. Detaching a single map resolves nothing
