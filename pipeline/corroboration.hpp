@@ -31,8 +31,8 @@ struct PairVerdict {
   int a = 0, b = 0;  // map indices
   bool agrees = false;
   double wall_agreement = 0.0;  // at the solved poses (core/wall_agreement.hpp)
-  std::int64_t overlap_cells =
-      0;  // cells known in both there (counted on every other row and column)
+  // Cells known in both there (counted on every other row and column, times 4).
+  std::int64_t overlap_cells = 0;
 };
 
 // `walls` holds MapWalls(maps[m]) for every map (made once: the judging runs every round of

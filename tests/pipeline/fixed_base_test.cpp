@@ -207,17 +207,22 @@ TEST(FixedBase, PairsWithAPorousSiteMapFindEveryRobot) {
   EXPECT_EQ(right, 5);
 }
 
+// `robots` simulated in `building` (simulate's default 50 m paths) and merged with the building's
+// map fixed at kT_merged_base: every robot within 1 deg and 3 cells of its truth.
+void ExpectEveryRobotOnItsBase(const char* building, int robots, std::uint32_t seed,
+                               const char* what) {
+  const BaseCase c = SimulateInBuilding(building, robots, seed, 50.0);
+  const FleetResult result = MergeFleet(MapsOf(c), 0, BaseFixed(c), FleetOptions{});
+  ASSERT_EQ(static_cast<int>(c.sim.maps.size()), robots);
+  for (int r = 0; r < robots; ++r) ExpectNearTruth(c, result, r, what);
+}
+
 TEST(FixedBase, RobotsOnAPorousSiteMapAreNotCutAsWeakBridges) {
   // Willow, seed 7: every robot's pair with the base is right, with walls 0.84-0.89 (the grey
   // walls the robots saw through), below min_bridge_wall_agreement. Each robot hangs on the base
   // alone, and as weak bridges four of the five were left out.
   FLEETMERGE_REQUIRE_SHARED_MAPS();
-  const BaseCase c = SimulateInBuilding("willow-full-0.05", 5, 7, 50.0);
-  const FixedPoses fixed = BaseFixed(c);
-  const FleetResult result = MergeFleet(MapsOf(c), 0, fixed, FleetOptions{});
-  for (int r = 0; r < static_cast<int>(c.sim.maps.size()); ++r) {
-    ExpectNearTruth(c, result, r, "porous site map:");
-  }
+  ExpectEveryRobotOnItsBase("willow-full-0.05", 5, 7, "porous site map:");
 }
 
 TEST(FixedBase, ARobotRightOnTheSiteMapIsNotCutForAWeakRobotPair) {
@@ -226,11 +231,7 @@ TEST(FixedBase, ARobotRightOnTheSiteMapIsNotCutForAWeakRobotPair) {
   // triangles' doubled tolerance. The solve sided with the robot pair, the base pair was the edge
   // in error, and robot4 was left out: the robot pair is rejected instead.
   FLEETMERGE_REQUIRE_SHARED_MAPS();
-  const BaseCase c = SimulateInBuilding("mit_csail", 4, 4, 50.0);
-  const FleetResult result = MergeFleet(MapsOf(c), 0, BaseFixed(c), FleetOptions{});
-  for (int r = 0; r < static_cast<int>(c.sim.maps.size()); ++r) {
-    ExpectNearTruth(c, result, r, "weak robot pair:");
-  }
+  ExpectEveryRobotOnItsBase("mit_csail", 4, 4, "weak robot pair:");
 }
 
 TEST(FixedBase, ARobotRightOnTheSiteMapIsNotCutBySliversOfOtherRobots) {
@@ -239,11 +240,7 @@ TEST(FixedBase, ARobotRightOnTheSiteMapIsNotCutBySliversOfOtherRobots) {
   // racks seen from another side disagree. Three conflicts against one support split robot1 off
   // until the cells each side overlaps on counted too.
   FLEETMERGE_REQUIRE_SHARED_MAPS();
-  const BaseCase c = SimulateInBuilding("nav2_warehouse", 4, 1, 50.0);
-  const FleetResult result = MergeFleet(MapsOf(c), 0, BaseFixed(c), FleetOptions{});
-  for (int r = 0; r < static_cast<int>(c.sim.maps.size()); ++r) {
-    ExpectNearTruth(c, result, r, "slivers of other robots:");
-  }
+  ExpectEveryRobotOnItsBase("nav2_warehouse", 4, 1, "slivers of other robots:");
 }
 
 TEST(FixedBase, SeveralFixedMapsNeverMove) {
