@@ -181,6 +181,11 @@ class Solver {
   std::vector<std::optional<Pose2>> poses_;
 };
 
+// Whether map x or map y is one of `pair`'s.
+bool HasAMapOf(const PairOutcome& pair, int x, int y) {
+  return pair.a == x || pair.a == y || pair.b == x || pair.b == y;
+}
+
 // pairs[worst], taken out (accepted false) with no other hypothesis that agrees, has walls of at
 // least `weak_wall_agreement` on its edge's hypothesis. Its weakest neighbour (an accepted pair of
 // one of its maps, with walls below `weak_wall_agreement`) is rejected instead, and pairs[worst]
@@ -199,8 +204,7 @@ bool BlameAWeakNeighbour(Solver& solver, std::vector<PairOutcome>& pairs, int wo
   double weakest_walls = weak_wall_agreement;
   for (int k = 0; k < static_cast<int>(pairs.size()); ++k) {
     const PairOutcome& p = pairs[k];
-    if (k == worst || !p.accepted) continue;
-    if (p.a != pair.a && p.a != pair.b && p.b != pair.a && p.b != pair.b) continue;
+    if (k == worst || !p.accepted || !HasAMapOf(p, pair.a, pair.b)) continue;
     const double w = p.hypotheses[p.edge_hypothesis].wall_agreement;
     if (w < weakest_walls) weakest = k, weakest_walls = w;
   }
@@ -373,9 +377,7 @@ void ResolveTriangleConflicts(int map_count, std::vector<PairOutcome>& pairs,
     }
     const int x = pair.a, y = pair.b;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
-      if (pairs[k].a == x || pairs[k].a == y || pairs[k].b == x || pairs[k].b == y) {
-        count_margin(k);
-      }
+      if (HasAMapOf(pairs[k], x, y)) count_margin(k);
     }
   }
 }

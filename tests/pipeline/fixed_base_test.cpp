@@ -228,8 +228,8 @@ TEST(FixedBase, RobotsOnAPorousSiteMapAreNotCutAsWeakBridges) {
 TEST(FixedBase, ARobotRightOnTheSiteMapIsNotCutForAWeakRobotPair) {
   // MIT CSAIL, 4 robots, seed 4: robot4's pair with the base is right (walls 0.99 over 91,000
   // cells); its pair with robot3 is 0.46 m off (walls 0.80 over 6,000 cells), within the
-  // triangles' doubled tolerance. The solve sided with the robot pair, the base pair was the edge
-  // in error, and robot4 was left out: the robot pair is rejected instead.
+  // triangles' doubled tolerance. The solve sides with the robot pair and leaves the base pair the
+  // edge in error; the weak robot pair is rejected instead of it, and robot4 stays on the base.
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   ExpectEveryRobotOnItsBase("mit_csail", 4, 4, "weak robot pair:");
 }
@@ -237,8 +237,8 @@ TEST(FixedBase, ARobotRightOnTheSiteMapIsNotCutForAWeakRobotPair) {
 TEST(FixedBase, ARobotRightOnTheSiteMapIsNotCutBySliversOfOtherRobots) {
   // Nav2 warehouse, 4 robots, seed 1: robot1's pair with the base agrees over 550,000 cells
   // (walls 0.97); at that pose it overlaps each other robot over 7,000-9,000 cells, where the
-  // racks seen from another side disagree. Three conflicts against one support split robot1 off
-  // until the cells each side overlaps on counted too.
+  // racks seen from another side disagree. Three conflicts against one support, but the support
+  // covers more cells than the conflicts, so robot1 is not split off.
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   ExpectEveryRobotOnItsBase("nav2_warehouse", 4, 1, "slivers of other robots:");
 }
