@@ -106,7 +106,7 @@ void WriteAndRename(int raw_fd, const fs::path& temp_path, const fs::path& path,
                     const std::string& bytes, AtomicWrite mode) {
   FileDescriptor fd(raw_fd);
   WriteAll(fd.get(), bytes, path);
-  if (mode == AtomicWrite::kDurable && ::fsync(fd.get()) != 0)
+  if (mode != AtomicWrite::kNoSync && ::fsync(fd.get()) != 0)
     ThrowWriteError(path, "cannot flush temporary file", errno);
   if (fd.Close() != 0) ThrowWriteError(path, "cannot close temporary file", errno);
   std::error_code ec;

@@ -21,7 +21,7 @@ LoadedMap LoadMap(const fs::path& yaml_path, std::int64_t max_cells) {
 }
 
 void SaveMap(const OccupancyGrid& grid, const fs::path& yaml_path,
-             const std::vector<fs::path>& protected_inputs) {
+             const std::vector<fs::path>& protected_inputs, AtomicWrite mode) {
   if (!yaml_path.has_filename()) throw Error(yaml_path.string() + ": not a file name");
   fs::path image_path = yaml_path;
   image_path.replace_extension(".pgm");
@@ -38,14 +38,14 @@ void SaveMap(const OccupancyGrid& grid, const fs::path& yaml_path,
   CheckNotAnInput(yaml_path, protected_inputs);
   const std::string image_bytes = EncodeImage(CellsToPixels(grid, yaml_path), image_path);
   const std::string yaml_text = FormatMapYaml(grid.geometry(), image_path.filename().string());
-  WriteFileAtomically(image_path, image_bytes, protected_inputs);
-  WriteFileAtomically(yaml_path, yaml_text, protected_inputs);
+  WriteFileAtomically(image_path, image_bytes, protected_inputs, mode);
+  WriteFileAtomically(yaml_path, yaml_text, protected_inputs, mode);
 }
 
 void SaveImage(const cv::Mat& image, const fs::path& path,
-               const std::vector<fs::path>& protected_inputs) {
+               const std::vector<fs::path>& protected_inputs, AtomicWrite mode) {
   CheckNotAnInput(path, protected_inputs);
-  WriteFileAtomically(path, EncodeImage(image, path), protected_inputs);
+  WriteFileAtomically(path, EncodeImage(image, path), protected_inputs, mode);
 }
 
 }  // namespace fleetmerge

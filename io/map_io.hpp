@@ -12,6 +12,7 @@
 
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
+#include "io/atomic_file.hpp"
 
 namespace fleetmerge {
 
@@ -60,13 +61,15 @@ LoadedMap LoadMap(const std::filesystem::path& yaml_path,
 // then the YAML (mode trinary, negate 0, occupied_thresh 0.65, free_thresh 0.196), each through
 // WriteFileAtomically: the image comes first, so no reader sees a YAML naming a missing image.
 // Refuses to overwrite any of `protected_inputs` (both files are checked before either is
-// written).
+// written). `mode`: WriteFileAtomically's.
 void SaveMap(const OccupancyGrid& grid, const std::filesystem::path& yaml_path,
-             const std::vector<std::filesystem::path>& protected_inputs = {});
+             const std::vector<std::filesystem::path>& protected_inputs = {},
+             AtomicWrite mode = AtomicWrite::kDurable);
 
 // Writes an 8- or 16-bit image atomically, as PNG (.png: 1, 3 or 4 channels) or binary PGM
 // (.pgm: 1 channel), chosen by the extension. For previews and debugging output.
 void SaveImage(const cv::Mat& image, const std::filesystem::path& path,
-               const std::vector<std::filesystem::path>& protected_inputs = {});
+               const std::vector<std::filesystem::path>& protected_inputs = {},
+               AtomicWrite mode = AtomicWrite::kDurable);
 
 }  // namespace fleetmerge

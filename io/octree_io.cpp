@@ -264,7 +264,7 @@ std::unique_ptr<octomap::OcTree> LoadOctree(const fs::path& path) {
 }
 
 void SaveOctree(const octomap::OcTree& tree, const fs::path& path,
-                const std::vector<fs::path>& protected_inputs) {
+                const std::vector<fs::path>& protected_inputs, AtomicWrite mode) {
   const OctreeFormat format = RequireFormat(path);
   if (tree.size() == 0) Fail(path, "refusing to write an empty octree");
   CheckNotAnInput(path, protected_inputs);
@@ -280,7 +280,7 @@ void SaveOctree(const octomap::OcTree& tree, const fs::path& path,
     tree.write(bytes);
   }
   if (!bytes) Fail(path, "OctoMap could not serialise the octree");
-  WriteFileAtomically(path, bytes.str(), protected_inputs);
+  WriteFileAtomically(path, bytes.str(), protected_inputs, mode);
 }
 
 }  // namespace fleetmerge

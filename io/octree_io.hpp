@@ -11,6 +11,8 @@
 #include <memory>
 #include <vector>
 
+#include "io/atomic_file.hpp"
+
 namespace octomap {
 class OcTree;
 }
@@ -26,9 +28,10 @@ void CheckOctreeFile(const std::filesystem::path& path);
 // Reads a .bt or .ot file (chosen by the extension). Throws fleetmerge::Error naming the path.
 std::unique_ptr<octomap::OcTree> LoadOctree(const std::filesystem::path& path);
 
-// Writes the tree as .bt or .ot (chosen by the extension) through WriteFileAtomically; refuses
-// to overwrite `protected_inputs` and an empty tree.
+// Writes the tree as .bt or .ot (chosen by the extension) through WriteFileAtomically (with
+// `mode`); refuses to overwrite `protected_inputs` and an empty tree.
 void SaveOctree(const octomap::OcTree& tree, const std::filesystem::path& path,
-                const std::vector<std::filesystem::path>& protected_inputs = {});
+                const std::vector<std::filesystem::path>& protected_inputs = {},
+                AtomicWrite mode = AtomicWrite::kDurable);
 
 }  // namespace fleetmerge

@@ -227,7 +227,14 @@ void ResultFolder::Publish(const std::vector<std::string>& files) {
     }
     manifest << "file: " << file << "\n";
   }
-  WriteFileAtomically(staging_dir_ / kManifestName, manifest.str());  // fsyncs files + folder
+  // The files were fsynced as they were written, their folders were not (AtomicWrite::
+  // kFolderSyncedLater): the subfolders now, the staging folder with the manifest.
+  std::error_code ec;
+  for (fs::recursive_directory_iterator it(staging_dir_, ec), end; !ec && it != end;
+       it.increment(ec)) {
+    if (it->is_directory(ec)) SyncFolder(it->path());
+  }
+  WriteFileAtomically(staging_dir_ / kManifestName, manifest.str());  // fsyncs it + the folder
   const fs::path old = SwapIn(staging_dir_, output_dir_);
   published_ = true;
   SyncFolder(output_dir_.parent_path());

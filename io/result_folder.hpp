@@ -69,7 +69,9 @@ class ResultFolder {
   const std::filesystem::path& staging_dir() const { return staging_dir_; }
 
   // Writes the manifest listing `files` (names in the staging folder, all of which must exist),
-  // flushes the folder and swaps it in as the output folder; the old set is then deleted.
+  // fsyncs the staging folder and its subfolders and swaps it in as the output folder; the old
+  // set is then deleted. The files themselves must have been fsynced by their writers
+  // (WriteFileAtomically with kDurable or kFolderSyncedLater).
   void Publish(const std::vector<std::string>& files);
 
  private:

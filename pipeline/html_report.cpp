@@ -246,7 +246,7 @@ std::string HtmlReportText(const HtmlReport& page) {
 
 std::vector<std::string> WriteHtmlReport(const HtmlReport& page, const std::filesystem::path& dir,
                                          const std::vector<std::filesystem::path>& protect,
-                                         int threads) {
+                                         int threads, AtomicWrite mode) {
   std::vector<std::string> written;
   for (std::size_t m = 0; m < page.maps.size(); ++m) {
     if (!page.maps[m].grid)
@@ -257,9 +257,9 @@ std::vector<std::string> WriteHtmlReport(const HtmlReport& page, const std::file
   // waits overlap.
   ParallelFor(page.maps.size(), threads, [&](std::size_t m) {
     if (!HasCells(*page.maps[m].grid)) return;
-    WriteFileAtomically(dir / MapImageName(m), MapImagePng(*page.maps[m].grid), protect);
+    WriteFileAtomically(dir / MapImageName(m), MapImagePng(*page.maps[m].grid), protect, mode);
   });
-  WriteFileAtomically(dir / kHtmlReportName, HtmlReportText(page), protect);
+  WriteFileAtomically(dir / kHtmlReportName, HtmlReportText(page), protect, mode);
   written.push_back(kHtmlReportName);
   return written;
 }

@@ -19,6 +19,7 @@
 
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
+#include "io/atomic_file.hpp"
 #include "io/map_io.hpp"
 #include "job/fleet_options.hpp"
 #include "job/job.hpp"
@@ -65,11 +66,11 @@ HtmlReport HtmlReportOfJob(const Job& job, const std::vector<LoadedMap>& loaded,
 nlohmann::json ChangedOptions(const FleetOptions& options);
 
 // Writes report.html and the report_map_<m>.png images (on `threads` threads, 0: all cores)
-// into `dir`, each atomically and never over `protect`; returns the names written (for the
-// result set's manifest).
+// into `dir`, each atomically (WriteFileAtomically with `mode`) and never over `protect`; returns
+// the names written (for the result set's manifest).
 std::vector<std::string> WriteHtmlReport(const HtmlReport& page, const std::filesystem::path& dir,
                                          const std::vector<std::filesystem::path>& protect,
-                                         int threads = 0);
+                                         int threads = 0, AtomicWrite mode = AtomicWrite::kDurable);
 
 // The page's HTML text alone (report.html's bytes).
 std::string HtmlReportText(const HtmlReport& page);

@@ -6,10 +6,10 @@
 #include <chrono>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "io/octree_io.hpp"
 #include "octree/octree_merge.hpp"
 #include "octree/octree_projection.hpp"
-#include "core/parallel.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -64,7 +64,8 @@ std::vector<std::optional<double>> VerticalOffsets(const FleetResult& result,
 
 OctreeOutputs WriteMergedOctrees(const FleetResult& result, const std::vector<JobOctree>& octrees,
                                  const std::filesystem::path& dir,
-                                 const std::vector<std::filesystem::path>& protect) {
+                                 const std::vector<std::filesystem::path>& protect,
+                                 AtomicWrite mode) {
   const auto start = std::chrono::steady_clock::now();
   OctreeOutputs out;
   out.z_m = VerticalOffsets(result, octrees);
@@ -82,7 +83,7 @@ OctreeOutputs WriteMergedOctrees(const FleetResult& result, const std::vector<Jo
     }
     if (inputs.empty()) continue;
     out.merged_files[c] = "merged_" + std::to_string(c) + ".bt";
-    SaveOctree(*MergeOctrees(inputs, resolution_m), dir / out.merged_files[c], protect);
+    SaveOctree(*MergeOctrees(inputs, resolution_m), dir / out.merged_files[c], protect, mode);
   }
   out.write_ms = MillisecondsSince(start);
   return out;

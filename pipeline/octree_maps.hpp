@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "io/atomic_file.hpp"
 #include "io/map_io.hpp"
 #include "job/job.hpp"
 #include "octree/octree_options.hpp"
@@ -49,10 +50,12 @@ struct OctreeOutputs {
 };
 
 // `octrees` has one entry per job map. Writes dir/merged_<c>.bt for each component that has an
-// octree and is merged (two or more maps, or a one-map job), atomically, never over `protect`.
+// octree and is merged (two or more maps, or a one-map job), atomically (WriteFileAtomically with
+// `mode`), never over `protect`.
 OctreeOutputs WriteMergedOctrees(const FleetResult& result, const std::vector<JobOctree>& octrees,
                                  const std::filesystem::path& dir,
-                                 const std::vector<std::filesystem::path>& protect);
+                                 const std::vector<std::filesystem::path>& protect,
+                                 AtomicWrite mode = AtomicWrite::kDurable);
 
 // report.json additions: maps[m].pose.z and maps[m].floor_z for octrees, components[c].
 // merged_octree, timing_ms.octree_projection (summed over the octrees) and octree_write.

@@ -49,6 +49,19 @@ TEST(AtomicFileTest, ReplacesAnExistingFile) {
   EXPECT_EQ(ft::FileNames(dir), (std::vector<std::string>{"out.txt"}));
 }
 
+// The modes differ only in what they fsync; a reader sees the old file or the whole new one in
+// each, and no temporary file is left.
+TEST(AtomicFileTest, EveryModeReplacesTheFileWhole) {
+  for (const AtomicWrite mode :
+       {AtomicWrite::kDurable, AtomicWrite::kFolderSyncedLater, AtomicWrite::kNoSync}) {
+    const fs::path dir = ft::MakeTempDir("atomic_mode");
+    ft::WriteFile(dir / "out.txt", "old contents that are longer than the new ones\n");
+    WriteFileAtomically(dir / "out.txt", "new\n", {}, mode);
+    EXPECT_EQ(ft::ReadFile(dir / "out.txt"), "new\n") << static_cast<int>(mode);
+    EXPECT_EQ(ft::FileNames(dir), (std::vector<std::string>{"out.txt"})) << static_cast<int>(mode);
+  }
+}
+
 TEST(AtomicFileTest, NewFileGetsUmaskPermissions) {
   const fs::path dir = ft::MakeTempDir("atomic_perms");
   const mode_t old_mask = ::umask(022);
