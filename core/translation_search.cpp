@@ -13,8 +13,18 @@
 namespace fleetmerge {
 namespace {
 
+// The coarse pixel must stay small enough to resolve the smaller map. The extent that sets it is
+// the larger map's (which keeps the transforms near coarse_max_side) but at most twice the
+// smaller map's, and at least a quarter of the larger's (which bounds the transforms at about
+// 4 coarse_max_side however small the smaller map). Maps of similar size, as a fleet's robots,
+// get the larger extent as before. A robot's map (~1200 cells across) inside a 4000 x 4000 site
+// at the site's pooling (21 cells, 1 m) was placed wrong in 3 of 30 pairs, at twice its own
+// (13 cells) in none (scripts/large_site_benchmark.sh; docs/accuracy.md, "Fixed base maps").
 int PoolingFor(const OccupancyGrid& a, double b_extent_cells, int coarse_max_side) {
-  const double side = std::max({double(a.width()), double(a.height()), b_extent_cells});
+  const double a_side = std::max(double(a.width()), double(a.height()));
+  const double larger = std::max(a_side, b_extent_cells);
+  const double smaller = std::min(a_side, b_extent_cells);
+  const double side = std::max(std::min(larger, 2.0 * smaller), larger / 4.0);
   return std::max(1, static_cast<int>(std::ceil(side / std::max(coarse_max_side, 8))));
 }
 

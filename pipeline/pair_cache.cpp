@@ -71,7 +71,9 @@ ContentDigest PairOptionsDigest(const PairOptions& o, const std::string& version
   // 3: the translation search's 5 x 5 blur by core/image_filters (float rounding differs from
   //    OpenCV's; refined poses move by ~1e-6 m).
   // 4: the key layout: sampling seeds only with random sampling.
-  constexpr int kPairResultsRevision = 4;
+  // 5: the translation search's pooling counts the larger map's extent up to twice the smaller's
+  //    (core/translation_search.cpp, PoolingFor).
+  constexpr int kPairResultsRevision = 5;
   AppendField(bytes, "pair_results_revision", kPairResultsRevision);
   AppendField(bytes, "hough.n_theta", h.hough.n_theta);
   AppendField(bytes, "hough.rho_step_cells", h.hough.rho_step_cells);

@@ -17,6 +17,7 @@
 #include "io/map_io.hpp"
 #include "pipeline/composite.hpp"
 #include "pipeline/fleet_merge.hpp"
+#include "pipeline/pair_merge.hpp"
 #include "refine/pose_graph.hpp"
 #include "sim/simulation.hpp"
 #include "tests/support/shared_data.hpp"
@@ -241,6 +242,53 @@ TEST(FixedBase, ARobotRightOnTheSiteMapIsNotCutBySliversOfOtherRobots) {
   // covers more cells than the conflicts, so robot1 is not split off.
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   ExpectEveryRobotOnItsBase("nav2_warehouse", 4, 1, "slivers of other robots:");
+}
+
+// A campus of four real buildings (GDC floors 1 and 2, MIT CSAIL, ACES; 5 cm) on a 4000 x 4000
+// map, unknown between them: the site map of scripts/large_site_benchmark.sh, made here cell for
+// cell as that script makes its site.pgm.
+OccupancyGrid FourBuildingSite() {
+  constexpr int kSide = 4000;
+  OccupancyGrid site(GridGeometry(0.05, {kSide, kSide}));
+  struct Placed {
+    const char* building;
+    int image_col, image_row;  // of the building's top-left pixel in the site's image
+  };
+  for (const Placed& p : {Placed{"gdc_floor1_full", 100, 100}, Placed{"gdc_floor2_full", 2100, 100},
+                          Placed{"mit_csail", 100, 2150}, Placed{"aces3_austin", 2300, 2300}}) {
+    const OccupancyGrid building =
+        LoadMap(*testing::SharedMapsDir() / (std::string(p.building) + ".yaml")).grid;
+    // Grid rows count from the bottom, image rows from the top.
+    const cv::Rect into(p.image_col, kSide - p.image_row - building.height(), building.width(),
+                        building.height());
+    building.cells().copyTo(site.mutable_cells()(into));
+  }
+  return site;
+}
+
+TEST(FixedBase, RobotsAreFoundInASiteOfFourBuildings) {
+  // A site 4000 cells across against robots ~1200 across. The translation search's coarse pixel
+  // was set by the site alone (21 cells, 1 m), too coarse to tell robot1 in GDC floor 2 from
+  // the other buildings' rooms: its best hypothesis was 44.6 deg off, its map's centre 2518 cells
+  // away (walls 0.08). It now counts the site's extent only up to twice the robot's (13 cells).
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const OccupancyGrid site = FourBuildingSite();
+  SimulationOptions options;
+  options.robots = 3;
+  options.seed = 1;
+  options.path_length_m = 100.0;
+  const SimulatedCase sim = SimulateFleet({site, "building", "four-building site"}, options);
+  PairOptions pair = FleetOptions{}.pair;  // as merge searches a pair with a fixed map
+  pair.hypotheses.translation.free_penalty = FleetOptions{}.fixed_map_free_penalty;
+  for (int r = 0; r < 3; ++r) {
+    const PairResult result = MergePair(site, sim.maps[r], pair, 2);
+    ASSERT_FALSE(result.hypotheses.empty());
+    const RobotError e =
+        ErrorOf(sim.maps[r], result.hypotheses.front().T_a_b, sim.truth.maps[r].T_building_map);
+    std::printf("site-robot%d: %.3f deg, %.2f cells\n", r + 1, e.yaw_deg, e.cells);
+    EXPECT_LT(e.yaw_deg, 1.0) << "robot" << r + 1;
+    EXPECT_LT(e.cells, 3.0) << "robot" << r + 1;
+  }
 }
 
 TEST(FixedBase, SeveralFixedMapsNeverMove) {
