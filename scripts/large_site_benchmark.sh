@@ -8,10 +8,14 @@
 # free places, so in any of the buildings), then:
 #   pair:  `fleetmerge pair SITE ROBOT --free-penalty 0.25` for each robot (the penalty merge
 #          uses for a pair with a fixed map): right when its best hypothesis is within 1 deg and
-#          3 cells of the truth (at the robot map's centre); its wall time and peak memory;
+#          3 cells of the truth (at the robot map's centre); its wall time and peak memory. Also
+#          `fleetmerge pair ROBOT SITE` (a job that lists the site after the robots), right the
+#          same way once inverted;
 #   merge: the job of the site, fixed at the identity, and the robots: each robot right, wrong or
 #          left out; the job's wall time and peak memory.
-# Prints a line per seed and the totals with the median times.
+# Prints one line per seed (robots; site pairs right, and with the site second; robots placed
+# right, wrong, left out; the worst placed robot's cells; each site pair's seconds; their peak MB;
+# the job's seconds and peak MB), then the totals with the median times.
 # Needs a build (scripts/build.sh, or BUILD_DIR) and ../shared/data/maps; about 20 s per seed.
 # Usage: scripts/large_site_benchmark.sh [OUT_DIR] [ROBOTS] [SEEDS]
 #   (default out/large_site, 3, "1 2 3 4 5 6 7 8 9 10")
@@ -86,6 +90,8 @@ for seed in $seeds; do
   for ((k = 1; k <= robots; k++)); do
     /usr/bin/time -f "%e %M" -o "$case_dir/pair$k.time" "$fleetmerge" pair "$site" \
       "$case_dir/robot$k.yaml" --free-penalty 0.25 -n 1 --json >"$case_dir/pair$k.json"
+    "$fleetmerge" pair "$case_dir/robot$k.yaml" "$site" --free-penalty 0.25 -n 1 --json \
+      >"$case_dir/pair${k}_reversed.json"
   done
   /usr/bin/python3 - "$case_dir" "$site" <<'PY'
 import sys, yaml
@@ -108,6 +114,14 @@ def compose(a, b):  # (x, y, yaw) poses: a * b
     c, s = math.cos(a[2]), math.sin(a[2])
     return (a[0] + c * b[0] - s * b[1], a[1] + s * b[0] + c * b[1], a[2] + b[2])
 
+def inverse(a):
+    c, s = math.cos(a[2]), math.sin(a[2])
+    return (-(c * a[0] + s * a[1]), s * a[0] - c * a[1], -a[2])
+
+def best(name):  # the best hypothesis of a `fleetmerge pair --json`
+    h = json.load(open(f"{case}/{name}.json"))["hypotheses"][0]
+    return (h["x"], h["y"], h["yaw"])
+
 def error(got, true, file):  # yaw error (deg) and displacement of the map's centre (cells)
     meta = yaml.safe_load(open(f"{case}/{file}"))
     with open(f"{case}/{meta['image']}", "rb") as f:
@@ -122,12 +136,13 @@ def time_of(name):
     seconds, kb = open(f"{case}/{name}.time").read().split()[-2:]
     return float(seconds), int(kb) / 1024
 
-pair_right, pair_times, pair_mb = 0, [], []
+pair_right, reversed_right, pair_times, pair_mb = 0, 0, [], []
 for k, m in enumerate(truth["maps"], 1):
     true = (m["pose"]["x"], m["pose"]["y"], m["pose"]["yaw"])
-    best = json.load(open(f"{case}/pair{k}.json"))["hypotheses"][0]
-    yaw, cells = error((best["x"], best["y"], best["yaw"]), true, m["file"])
+    yaw, cells = error(best(f"pair{k}"), true, m["file"])
     pair_right += yaw <= 1.0 and cells <= 3.0
+    yaw, cells = error(inverse(best(f"pair{k}_reversed")), true, m["file"])
+    reversed_right += yaw <= 1.0 and cells <= 3.0
     seconds, mb = time_of(f"pair{k}")
     pair_times.append(seconds)
     pair_mb.append(mb)
@@ -148,7 +163,8 @@ for m in truth["maps"]:
     else:
         wrong += 1
 seconds, mb = time_of("merge")
-print(f"seed{seed} {len(truth['maps'])} {pair_right} {right} {wrong} {left_out} {worst:.2f} "
+print(f"seed{seed} {len(truth['maps'])} {pair_right} {reversed_right} {right} {wrong} {left_out} "
+      f"{worst:.2f} "
       + " ".join(f"{t:.2f}" for t in pair_times) + f" {max(pair_mb):.0f} {seconds:.2f} {mb:.0f}")
 PY
 done | tee "$out/summary.txt"
@@ -157,12 +173,13 @@ import statistics, sys
 rows = [line.split() for line in open(sys.argv[1])]
 robots = int(sys.argv[2])
 n = sum(int(r[1]) for r in rows)
-pair_times = [float(t) for r in rows for t in r[7:7 + robots]]
+pair_times = [float(t) for r in rows for t in r[8:8 + robots]]
 print(f"large site (4000 x 4000 cells), {len(rows)} seeds, {n} robots: pairs with the site right "
-      f"{sum(int(r[2]) for r in rows)}, median {statistics.median(pair_times):.2f} s, peak "
-      f"{max(float(r[7 + robots]) for r in rows):.0f} MB; merged with the site fixed: right "
-      f"{sum(int(r[3]) for r in rows)}, wrong {sum(int(r[4]) for r in rows)}, left out "
-      f"{sum(int(r[5]) for r in rows)}, worst {max(float(r[6]) for r in rows):.2f} cells; job "
-      f"median {statistics.median(float(r[-2]) for r in rows):.2f} s, peak "
+      f"{sum(int(r[2]) for r in rows)} (site second: {sum(int(r[3]) for r in rows)}), median "
+      f"{statistics.median(pair_times):.2f} s, peak {max(float(r[8 + robots]) for r in rows):.0f} "
+      f"MB; merged with the site fixed: right {sum(int(r[4]) for r in rows)}, wrong "
+      f"{sum(int(r[5]) for r in rows)}, left out {sum(int(r[6]) for r in rows)}, worst "
+      f"{max(float(r[7]) for r in rows):.2f} cells; job median "
+      f"{statistics.median(float(r[-2]) for r in rows):.2f} s, peak "
       f"{max(float(r[-1]) for r in rows):.0f} MB")
 PY
