@@ -4,7 +4,7 @@
 # inside a large one, and not slowly"). No real map in ../shared is that large, so the site is a
 # campus of four of them, 5 cm each, laid out on a 200 x 200 m map with unknown space between:
 # GDC floors 1 and 2, MIT CSAIL and ACES (1.6 M known cells of 16 M). Per seed, ROBOTS robots
-# are simulated in the site (`fleetmerge simulate --building`, 100 m paths; they start at random
+# are simulated in the site (`fleetmerge simulate --building`, PATH_M m paths; they start at random
 # free places, so in any of the buildings), then:
 #   pair:  `fleetmerge pair SITE ROBOT --free-penalty 0.25` for each robot (the penalty merge
 #          uses for a pair with a fixed map): right when its best hypothesis is within 1 deg and
@@ -17,8 +17,8 @@
 # right, wrong, left out; the worst placed robot's cells; each site pair's seconds; their peak MB;
 # the job's seconds and peak MB), then the totals with the median times.
 # Needs a build (scripts/build.sh, or BUILD_DIR) and ../shared/data/maps; about 20 s per seed.
-# Usage: scripts/large_site_benchmark.sh [OUT_DIR] [ROBOTS] [SEEDS]
-#   (default out/large_site, 3, "1 2 3 4 5 6 7 8 9 10")
+# Usage: scripts/large_site_benchmark.sh [OUT_DIR] [ROBOTS] [SEEDS] [PATH_M]
+#   (default out/large_site, 3, "1 2 3 4 5 6 7 8 9 10", 100: each robot's path in metres)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 fleetmerge=${BUILD_DIR:-build}/cli/fleetmerge
@@ -26,6 +26,7 @@ maps=../shared/data/maps
 out=${1:-out/large_site}
 robots=${2:-3}
 seeds=${3:-1 2 3 4 5 6 7 8 9 10}
+path_m=${4:-100}
 if [ ! -d "$maps" ]; then
   echo "large_site_benchmark: $maps is missing (the real building maps)" >&2
   exit 1
@@ -86,7 +87,7 @@ site=$(realpath "$out/site.yaml")
 for seed in $seeds; do
   case_dir=$out/seed$seed
   "$fleetmerge" simulate "$case_dir" --building "$site" --robots "$robots" --seed "$seed" \
-    --path-length 100 >/dev/null
+    --path-length "$path_m" >/dev/null
   for ((k = 1; k <= robots; k++)); do
     /usr/bin/time -f "%e %M" -o "$case_dir/pair$k.time" "$fleetmerge" pair "$site" \
       "$case_dir/robot$k.yaml" --free-penalty 0.25 -n 1 --json >"$case_dir/pair$k.json"
