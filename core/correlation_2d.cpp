@@ -5,6 +5,13 @@
 #include "core/error.hpp"
 
 namespace fleetmerge {
+namespace {
+
+// OpenCV's dft skips the rows past `rows` (all zero in, or not needed out), but refuses that hint
+// for a single-column image: a map one cell wide searched as map a, with a one-pixel-wide b.
+int NonzeroRows(cv::Size dft_size, int rows) { return dft_size.width > 1 ? rows : 0; }
+
+}  // namespace
 
 FixedImageCorrelator::FixedImageCorrelator(const cv::Mat1f& a, cv::Size max_b_size)
     : FixedImageCorrelator(std::vector<cv::Mat1f>{a}, max_b_size) {}
@@ -23,7 +30,7 @@ FixedImageCorrelator::FixedImageCorrelator(const std::vector<cv::Mat1f>& a_layer
     cv::Mat1f padded(dft_size_, 0.f);
     a.copyTo(padded(cv::Rect(0, 0, a.cols, a.rows)));
     a_spectra_.emplace_back();
-    cv::dft(padded, a_spectra_.back(), 0, a.rows);
+    cv::dft(padded, a_spectra_.back(), 0, NonzeroRows(dft_size_, a.rows));
   }
 }
 
@@ -46,7 +53,7 @@ cv::Size FixedImageCorrelator::TransformB(const std::vector<cv::Mat1f>& b_layers
     if (b.size() != b_size) throw Error("FixedImageCorrelator: B layers differ in size");
     padded_.setTo(0.f);
     b.copyTo(padded_(cv::Rect(0, 0, b.cols, b.rows)));
-    cv::dft(padded_, b_spectra_[k], 0, b.rows);
+    cv::dft(padded_, b_spectra_[k], 0, NonzeroRows(dft_size_, b.rows));
   }
   return b_size;
 }
@@ -57,7 +64,8 @@ void FixedImageCorrelator::InverseOfProducts(bool conjugate_b, int output_rows) 
     cv::mulSpectrums(a_spectra_[k], b_spectra_[k], k == 0 ? sum_ : product_, 0, conjugate_b);
     if (k > 0) sum_ += product_;
   }
-  cv::idft(sum_, circular_, cv::DFT_REAL_OUTPUT | cv::DFT_SCALE, output_rows);
+  cv::idft(sum_, circular_, cv::DFT_REAL_OUTPUT | cv::DFT_SCALE,
+           NonzeroRows(dft_size_, output_rows));
 }
 
 cv::Mat1f FixedImageCorrelator::CorrelateSum(const std::vector<cv::Mat1f>& b_layers) {

@@ -73,7 +73,8 @@ ContentDigest PairOptionsDigest(const PairOptions& o, const std::string& version
   // 4: the key layout: sampling seeds only with random sampling.
   // 5: the translation search's pooling counts the larger map's extent up to twice the smaller's
   //    (core/translation_search.cpp, PoolingFor).
-  constexpr int kPairResultsRevision = 5;
+  // 6: a map more than twice the other's extent is searched from the other (pipeline/pair_merge).
+  constexpr int kPairResultsRevision = 6;
   AppendField(bytes, "pair_results_revision", kPairResultsRevision);
   AppendField(bytes, "hough.n_theta", h.hough.n_theta);
   AppendField(bytes, "hough.rho_step_cells", h.hough.rho_step_cells);

@@ -30,9 +30,10 @@ same_paths_on_more_data+='|^LookAlikeRanking\.|^FixedBase\.SeveralFixedMapsNever
 # cells of a split in weak_bridges_test, pose_graph_test and corroboration_test (about 60 s of
 # CPU under ASan).
 same_paths_on_more_data+='|^FixedBase\.(PairsWithAPorous|RobotsOnAPorous|ARobotRightOnTheSiteMap)'
-# A site of four buildings (16 M cells): the pooling it tests is the translation search's code that
-# every pair runs (translation_search_test, pair_accuracy_test); its simulation alone takes 7 s.
-same_paths_on_more_data+='|^FixedBase\.RobotsAreFoundInASiteOfFourBuildings'
+# Robots in a site of four buildings (16 M cells): the pooling and the search from the smaller map
+# that these test run in pairs of any size (translation_search_test, pair_accuracy_test,
+# prepared_map_test); each simulation alone takes 5-7 s.
+same_paths_on_more_data+='|^FixedBase\.[A-Za-z]*SiteOfFourBuildings'
 # Known start poses: AWrongPriorGetsItsPairRefusedWithAReason runs the refusal, the prior edges and
 # the site-frame node; Api.AMapThatPairsWithNoneIsPlacedAtItsInitialPose the placement by a prior.
 # The other three rerun that code on more robots (about 65 s of CPU under ASan).

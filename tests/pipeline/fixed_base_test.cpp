@@ -266,29 +266,50 @@ OccupancyGrid FourBuildingSite() {
   return site;
 }
 
-TEST(FixedBase, RobotsAreFoundInASiteOfFourBuildings) {
-  // A site 4000 cells across against robots ~1200 across. The translation search's coarse pixel
-  // was set by the site alone (21 cells, 1 m), too coarse to tell robot1 in GDC floor 2 from
-  // the other buildings' rooms: its best hypothesis was 44.6 deg off, its map's centre 2518 cells
-  // away (walls 0.08). It now counts the site's extent only up to twice the robot's (13 cells).
-  FLEETMERGE_REQUIRE_SHARED_MAPS();
+// Robots of `path_length_m` paths (seed 1) simulated in FourBuildingSite(): each robot's pair
+// with the site, searched as merge searches a pair with a fixed map, with the site as the pair's
+// first map and as its second, has its best hypothesis within 1 deg and 3 cells of the truth.
+void ExpectRobotsFoundInTheSite(double path_length_m, const char* what) {
   const OccupancyGrid site = FourBuildingSite();
   SimulationOptions options;
   options.robots = 3;
   options.seed = 1;
-  options.path_length_m = 100.0;
+  options.path_length_m = path_length_m;
   const SimulatedCase sim = SimulateFleet({site, "building", "four-building site"}, options);
-  PairOptions pair = FleetOptions{}.pair;  // as merge searches a pair with a fixed map
+  PairOptions pair = FleetOptions{}.pair;
   pair.hypotheses.translation.free_penalty = FleetOptions{}.fixed_map_free_penalty;
   for (int r = 0; r < 3; ++r) {
-    const PairResult result = MergePair(site, sim.maps[r], pair, 2);
-    ASSERT_FALSE(result.hypotheses.empty());
-    const RobotError e =
-        ErrorOf(sim.maps[r], result.hypotheses.front().T_a_b, sim.truth.maps[r].T_building_map);
-    std::printf("site-robot%d: %.3f deg, %.2f cells\n", r + 1, e.yaw_deg, e.cells);
-    EXPECT_LT(e.yaw_deg, 1.0) << "robot" << r + 1;
-    EXPECT_LT(e.cells, 3.0) << "robot" << r + 1;
+    const PairResult site_first = MergePair(site, sim.maps[r], pair, 2);
+    const PairResult site_second = MergePair(sim.maps[r], site, pair, 2);
+    ASSERT_FALSE(site_first.hypotheses.empty());
+    ASSERT_FALSE(site_second.hypotheses.empty());
+    const Pose2& truth = sim.truth.maps[r].T_building_map;
+    for (const RobotError& e :
+         {ErrorOf(sim.maps[r], site_first.hypotheses.front().T_a_b, truth),
+          ErrorOf(sim.maps[r], site_second.hypotheses.front().T_a_b.inverse(), truth)}) {
+      std::printf("%s robot%d: %.3f deg, %.2f cells\n", what, r + 1, e.yaw_deg, e.cells);
+      EXPECT_LT(e.yaw_deg, 1.0) << what << " robot" << r + 1;
+      EXPECT_LT(e.cells, 3.0) << what << " robot" << r + 1;
+    }
   }
+}
+
+TEST(FixedBase, RobotsAreFoundInASiteOfFourBuildings) {
+  // A site 4000 cells across against robots ~1200 across. Searched with the site as map a and
+  // the coarse pixel set by the site alone (21 cells, 1 m), robot1 in GDC floor 2 lost to rooms
+  // of the other buildings: 44.6 deg off, its map's centre 2518 cells away (walls 0.08). The pair
+  // is now searched from the robot (SearchedFromB) with the site counted up to twice the robot's
+  // extent (PoolingFor); either alone finds robot1 here, the 50 m robots below need both.
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  ExpectRobotsFoundInTheSite(100.0, "100 m paths:");
+}
+
+TEST(FixedBase, SmallRobotsAreFoundInASiteOfFourBuildings) {
+  // Robots of 50 m paths (~800 cells across). Searched with the site as map a, none of robot2's
+  // 4 best hypotheses had its rotation (93 deg off); searched from the robot with the site's
+  // pooling (30 cells), 89 deg off. Right with both rules.
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  ExpectRobotsFoundInTheSite(50.0, "50 m paths:");
 }
 
 TEST(FixedBase, SeveralFixedMapsNeverMove) {
