@@ -17,9 +17,10 @@ namespace {
 // the larger map's (which keeps the transforms near coarse_max_side) but at most twice the
 // smaller map's, and at least a quarter of the larger's (which bounds the transforms at about
 // 4 coarse_max_side however small the smaller map). Maps of similar size, as a fleet's robots,
-// get the larger extent as before. A robot's map (~1200 cells across) inside a 4000 x 4000 site
-// at the site's pooling (21 cells, 1 m) was placed wrong in 3 of 30 pairs, at twice its own
-// (13 cells) in none (scripts/large_site_benchmark.sh; docs/accuracy.md, "Fixed base maps").
+// get the larger extent as before. A robot's map searched against a 4000 x 4000 site: at the
+// site's pooling (30 cells) a robot of a 50 m path was 89 deg off
+// (FixedBase.SmallRobotsAreFoundInASiteOfFourBuildings); at twice the robot's extent (8-10
+// cells) all 60 robots of scripts/large_site_benchmark.sh (50 and 100 m) were right.
 int PoolingFor(const OccupancyGrid& a, double b_extent_cells, int coarse_max_side) {
   const double a_side = std::max(double(a.width()), double(a.height()));
   const double larger = std::max(a_side, b_extent_cells);
