@@ -16,7 +16,8 @@
 # Prints one line per seed (robots; site pairs right, and with the site second; robots placed
 # right, wrong, left out; the worst placed robot's cells; each site pair's seconds; their peak MB;
 # the job's seconds and peak MB), then the totals with the median times.
-# Needs a build (scripts/build.sh, or BUILD_DIR) and ../shared/data/maps; about 20 s per seed.
+# Needs a build (scripts/build.sh, or BUILD_DIR), ../shared/data/maps and /usr/bin/time (Debian
+# package time); about 20 s per seed.
 # Usage: scripts/large_site_benchmark.sh [OUT_DIR] [ROBOTS] [SEEDS] [PATH_M]
 #   (default out/large_site, 3, "1 2 3 4 5 6 7 8 9 10", 100: each robot's path in metres)
 set -euo pipefail
@@ -29,6 +30,10 @@ seeds=${3:-1 2 3 4 5 6 7 8 9 10}
 path_m=${4:-100}
 if [ ! -d "$maps" ]; then
   echo "large_site_benchmark: $maps is missing (the real building maps)" >&2
+  exit 1
+fi
+if [ ! -x /usr/bin/time ]; then  # wall time and peak memory of each process
+  echo "large_site_benchmark: /usr/bin/time is missing (Debian package 'time')" >&2
   exit 1
 fi
 rm -rf "$out"
