@@ -89,7 +89,7 @@ TEST_P(PairAccuracy, BestHypothesisWithinOneDegreeAndThreeCells) {
   const Tally t = RunTrials(map.grid, 42, testing::ScaledCount(TrialsPerMap(), 6));
   std::printf(
       "[ accuracy ] %-24s coarse (1 deg, 3 cells) %d/%d, fine (0.25 deg, 1 cell) %d/%d, "
-      "median yaw error %.3f deg, median displacement %.2f cells\n",
+      "median yaw error %.3f deg, median displacement %.3f cells\n",
       GetParam(), t.coarse, t.trials, t.fine, t.trials, Median(t.yaw_errors_deg),
       Median(t.displacement_cells));
   EXPECT_GE(t.coarse * 100, 95 * t.trials) << "95 % within 1 degree and 3 cells";
