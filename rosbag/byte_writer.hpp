@@ -6,6 +6,7 @@
 #include <cstring>
 #include <string>
 #include <string_view>
+#include <utility>
 
 static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__, "ByteWriter assumes a little-endian host");
 
@@ -28,6 +29,10 @@ class ByteWriter {
   std::size_t size() const { return bytes_.size(); }
   const std::string& bytes() const { return bytes_; }
   std::string& mutable_bytes() { return bytes_; }
+  // Room for `total` bytes in all: a writer that knows its size (a map's cells) grows once.
+  void Reserve(std::size_t total) { bytes_.reserve(total); }
+  // The bytes, moved out; the writer is left empty.
+  std::string Release() { return std::move(bytes_); }
 
  private:
   std::string bytes_;
@@ -55,7 +60,18 @@ class CdrWriter {
     Put(static_cast<std::uint32_t>(bytes.size()));
     out_.Bytes(bytes);
   }
+  // ByteSequence of `count` elements that the caller writes into the returned bytes: a map's
+  // cells go into the message once, not through a copy.
+  char* ByteSequenceToFill(std::size_t count) {
+    Put(static_cast<std::uint32_t>(count));
+    std::string& bytes = out_.mutable_bytes();
+    const std::size_t at = bytes.size();
+    bytes.resize(at + count);
+    return bytes.data() + at;
+  }
+  void Reserve(std::size_t total) { out_.Reserve(total); }
   const std::string& bytes() const { return out_.bytes(); }
+  std::string Release() { return out_.Release(); }
 
  private:
   void Align(std::size_t size) {

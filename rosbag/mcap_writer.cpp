@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <utility>
 
 #include "core/error.hpp"
 #include "rosbag/byte_writer.hpp"
@@ -12,12 +13,20 @@
 namespace fleetmerge {
 namespace {
 
+// A record's opcode and uint64 content length; its content follows.
+void PutRecordHeader(ByteWriter& out, mcap::Op opcode, std::uint64_t content_bytes) {
+  out.Put(static_cast<std::uint8_t>(opcode));
+  out.Put(content_bytes);
+}
+
 // One record: opcode, uint64 content length, content.
 void PutRecord(ByteWriter& out, mcap::Op opcode, const std::string& content) {
-  out.Put(static_cast<std::uint8_t>(opcode));
-  out.Put(static_cast<std::uint64_t>(content.size()));
+  PutRecordHeader(out, opcode, content.size());
   out.Bytes(content);
 }
+
+constexpr std::uint64_t kRecordHeaderBytes = 1 + 8;
+constexpr std::uint64_t kMessageFieldsBytes = 2 + 4 + 8 + 8;  // channel, sequence, two times
 
 // Map<string, string>: a uint32 byte length, then key/value strings, keys sorted.
 std::string StringMap(const std::map<std::string, std::string>& entries) {
@@ -63,7 +72,7 @@ std::uint16_t McapWriter::AddChannel(std::uint16_t schema_id, const std::string&
 }
 
 void McapWriter::AddMessage(std::uint16_t channel_id, std::uint64_t log_time_ns,
-                            std::uint64_t publish_time_ns, const std::string& data) {
+                            std::uint64_t publish_time_ns, std::string data) {
   if (channel_id == 0 || channel_id > channels_.size()) {
     throw Error("MCAP writer: a message names channel " + std::to_string(channel_id) +
                 ", which was not added");
@@ -71,7 +80,7 @@ void McapWriter::AddMessage(std::uint16_t channel_id, std::uint64_t log_time_ns,
   const auto sequence = static_cast<std::uint32_t>(
       std::count_if(messages_.begin(), messages_.end(),
                     [&](const Message& m) { return m.channel_id == channel_id; }));
-  messages_.push_back({channel_id, sequence, log_time_ns, publish_time_ns, data});
+  messages_.push_back({channel_id, sequence, log_time_ns, publish_time_ns, std::move(data)});
 }
 
 void McapWriter::AddMetadata(const std::string& name,
@@ -102,6 +111,14 @@ std::string McapWriter::Finish() const {
 
   // The chunk's records; each message's offset inside them goes to its channel's MessageIndex.
   ByteWriter chunk_records;
+  std::uint64_t chunk_bytes = 0;
+  for (const auto* records : {&schema_records, &channel_records}) {
+    for (const std::string& r : *records) chunk_bytes += kRecordHeaderBytes + r.size();
+  }
+  for (const Message& m : messages_) {
+    chunk_bytes += kRecordHeaderBytes + kMessageFieldsBytes + m.data.size();
+  }
+  chunk_records.Reserve(chunk_bytes);
   for (const std::string& r : schema_records) PutRecord(chunk_records, mcap::kSchema, r);
   for (const std::string& r : channel_records) PutRecord(chunk_records, mcap::kChannel, r);
   std::map<std::uint16_t, std::vector<std::pair<std::uint64_t, std::uint64_t>>> index;
@@ -112,17 +129,26 @@ std::string McapWriter::Finish() const {
     ++counts[m.channel_id];
     start_ns = std::min(start_ns, m.log_time_ns);
     end_ns = std::max(end_ns, m.log_time_ns);
-    ByteWriter r;
-    r.Put(m.channel_id);
-    r.Put(m.sequence);
-    r.Put(m.log_time_ns);
-    r.Put(m.publish_time_ns);
-    r.Bytes(m.data);
-    PutRecord(chunk_records, mcap::kMessage, r.bytes());
+    PutRecordHeader(chunk_records, mcap::kMessage, kMessageFieldsBytes + m.data.size());
+    chunk_records.Put(m.channel_id);
+    chunk_records.Put(m.sequence);
+    chunk_records.Put(m.log_time_ns);
+    chunk_records.Put(m.publish_time_ns);
+    chunk_records.Bytes(m.data);
   }
   if (messages_.empty()) start_ns = 0;
 
   ByteWriter file;
+  // The chunk and everything around it: the indexes, metadata and summary are small.
+  std::uint64_t around_bytes = 4096;
+  for (const auto* records : {&schema_records, &channel_records}) {
+    for (const std::string& r : *records) around_bytes += kRecordHeaderBytes + r.size();
+  }
+  for (const Metadata& m : metadata_) {
+    around_bytes += m.name.size() + 64;
+    for (const auto& [key, value] : m.entries) around_bytes += key.size() + value.size() + 8;
+  }
+  file.Reserve(chunk_records.size() + around_bytes);
   file.Bytes(std::string_view(mcap::kMagic, mcap::kMagicSize));
   {
     ByteWriter r;
@@ -133,15 +159,14 @@ std::string McapWriter::Finish() const {
   const std::uint64_t chunk_start = file.size();
   {
     const std::string& records = chunk_records.bytes();
-    ByteWriter r;
-    r.Put(start_ns);
-    r.Put(end_ns);
-    r.Put(static_cast<std::uint64_t>(records.size()));
-    r.Put(Crc32(records, 0, records.size()));
-    r.Prefixed("");  // compression: none
-    r.Put(static_cast<std::uint64_t>(records.size()));
-    r.Bytes(records);
-    PutRecord(file, mcap::kChunk, r.bytes());
+    PutRecordHeader(file, mcap::kChunk, 8 + 8 + 8 + 4 + 4 + 8 + records.size());
+    file.Put(start_ns);
+    file.Put(end_ns);
+    file.Put(static_cast<std::uint64_t>(records.size()));
+    file.Put(Crc32(records, 0, records.size()));
+    file.Prefixed("");  // compression: none
+    file.Put(static_cast<std::uint64_t>(records.size()));
+    file.Bytes(records);
   }
   const std::uint64_t chunk_length = file.size() - chunk_start;
   std::map<std::uint16_t, std::uint64_t> index_offsets;
@@ -252,7 +277,7 @@ std::string McapWriter::Finish() const {
   file.Put(summary_offset_start);
   file.Put(Crc32(file.bytes(), summary_start, footer_start + 1 + 8 + 8 + 8));
   file.Bytes(std::string_view(mcap::kMagic, mcap::kMagicSize));
-  return file.bytes();
+  return file.Release();
 }
 
 }  // namespace fleetmerge

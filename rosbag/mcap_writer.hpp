@@ -29,11 +29,13 @@ class McapWriter {
   std::uint16_t AddChannel(std::uint16_t schema_id, const std::string& topic,
                            const std::string& message_encoding,
                            const std::map<std::string, std::string>& metadata);
+  // `data` is kept until Finish (moved in: a merged map's message is its whole grid).
   void AddMessage(std::uint16_t channel_id, std::uint64_t log_time_ns,
-                  std::uint64_t publish_time_ns, const std::string& data);
+                  std::uint64_t publish_time_ns, std::string data);
   void AddMetadata(const std::string& name, const std::map<std::string, std::string>& metadata);
 
-  // The whole file.
+  // The whole file. Each message's bytes are copied twice, into the chunk and the chunk into the
+  // file, each buffer sized once.
   std::string Finish() const;
 
  private:

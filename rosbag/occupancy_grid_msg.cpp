@@ -177,8 +177,10 @@ std::string EncodeCdrOccupancyGrid(const OccupancyGrid& grid, const std::string&
   const RosTime stamp = RosTimeOf(stamp_ns);
   const GridGeometry& geometry = grid.geometry();
   const Pose2& origin = geometry.T_map_grid();
+  const std::size_t cells = static_cast<std::size_t>(grid.width()) * grid.height();
   CdrWriter w;
-  w.Put(stamp.sec);  // header
+  w.Reserve(cells + frame_id.size() + 128);  // the header's fields are under 128 bytes
+  w.Put(stamp.sec);                          // header
   w.Put(stamp.nanosec);
   w.String(frame_id);
   w.Put(stamp.sec);  // info.map_load_time
@@ -191,7 +193,7 @@ std::string EncodeCdrOccupancyGrid(const OccupancyGrid& grid, const std::string&
                    0.0, 0.0, std::sin(half_yaw), std::cos(half_yaw)}) {  // orientation x y z w
     w.Put(v);
   }
-  std::string data(static_cast<std::size_t>(grid.width()) * grid.height(), '\0');
+  char* data = w.ByteSequenceToFill(cells);
   std::size_t k = 0;
   for (int j = 0; j < grid.height(); ++j) {
     for (int i = 0; i < grid.width(); ++i, ++k) {
@@ -207,8 +209,7 @@ std::string EncodeCdrOccupancyGrid(const OccupancyGrid& grid, const std::string&
       }
     }
   }
-  w.ByteSequence(data);
-  return w.bytes();
+  return w.Release();
 }
 
 }  // namespace fleetmerge
