@@ -244,23 +244,38 @@ std::string HtmlReportText(const HtmlReport& page) {
   return html;
 }
 
-std::vector<std::string> WriteHtmlReport(const HtmlReport& page, const std::filesystem::path& dir,
-                                         const std::vector<std::filesystem::path>& protect,
-                                         int threads, AtomicWrite mode) {
+std::vector<std::string> WriteHtmlMapImages(const std::vector<const OccupancyGrid*>& maps,
+                                            const std::filesystem::path& dir,
+                                            const std::vector<std::filesystem::path>& protect,
+                                            int threads, AtomicWrite mode) {
   std::vector<std::string> written;
-  for (std::size_t m = 0; m < page.maps.size(); ++m) {
-    if (!page.maps[m].grid)
-      throw Error("internal: report.html map " + std::to_string(m) + " unset");
-    if (HasCells(*page.maps[m].grid)) written.push_back(MapImageName(m));
+  for (std::size_t m = 0; m < maps.size(); ++m) {
+    if (!maps[m]) throw Error("internal: report.html map " + std::to_string(m) + " unset");
+    if (HasCells(*maps[m])) written.push_back(MapImageName(m));
   }
   // On threads: each atomic write waits for its fsync (about 8 ms a file measured here), and the
   // waits overlap.
-  ParallelFor(page.maps.size(), threads, [&](std::size_t m) {
-    if (!HasCells(*page.maps[m].grid)) return;
-    WriteFileAtomically(dir / MapImageName(m), MapImagePng(*page.maps[m].grid), protect, mode);
+  ParallelFor(maps.size(), threads, [&](std::size_t m) {
+    if (!HasCells(*maps[m])) return;
+    WriteFileAtomically(dir / MapImageName(m), MapImagePng(*maps[m]), protect, mode);
   });
+  return written;
+}
+
+std::vector<std::string> WriteHtmlPage(const HtmlReport& page, const std::filesystem::path& dir,
+                                       const std::vector<std::filesystem::path>& protect,
+                                       AtomicWrite mode) {
   WriteFileAtomically(dir / kHtmlReportName, HtmlReportText(page), protect, mode);
-  written.push_back(kHtmlReportName);
+  return {kHtmlReportName};
+}
+
+std::vector<std::string> WriteHtmlReport(const HtmlReport& page, const std::filesystem::path& dir,
+                                         const std::vector<std::filesystem::path>& protect,
+                                         int threads, AtomicWrite mode) {
+  std::vector<const OccupancyGrid*> maps;
+  for (const HtmlReportMap& map : page.maps) maps.push_back(map.grid);
+  std::vector<std::string> written = WriteHtmlMapImages(maps, dir, protect, threads, mode);
+  for (std::string& name : WriteHtmlPage(page, dir, protect, mode)) written.push_back(name);
   return written;
 }
 

@@ -72,6 +72,18 @@ std::vector<std::string> WriteHtmlReport(const HtmlReport& page, const std::file
                                          const std::vector<std::filesystem::path>& protect,
                                          int threads = 0, AtomicWrite mode = AtomicWrite::kDurable);
 
+// WriteHtmlReport in two parts, for a caller that has the maps before the report: the images
+// depend on the maps alone (maps[m] is the page's maps[m].grid), the page on everything.
+// WriteHtmlMapImages then WriteHtmlPage write what WriteHtmlReport writes.
+std::vector<std::string> WriteHtmlMapImages(const std::vector<const OccupancyGrid*>& maps,
+                                            const std::filesystem::path& dir,
+                                            const std::vector<std::filesystem::path>& protect,
+                                            int threads = 0,
+                                            AtomicWrite mode = AtomicWrite::kDurable);
+std::vector<std::string> WriteHtmlPage(const HtmlReport& page, const std::filesystem::path& dir,
+                                       const std::vector<std::filesystem::path>& protect,
+                                       AtomicWrite mode = AtomicWrite::kDurable);
+
 // The page's HTML text alone (report.html's bytes).
 std::string HtmlReportText(const HtmlReport& page);
 

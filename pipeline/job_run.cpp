@@ -248,23 +248,46 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
   }
   const FleetResult& result = outcome.result;
 
-  const auto write_start = Clock::now();
-  std::vector<std::string> written;
+  std::vector<std::string> written;  // the result set's files, for its manifest
   std::vector<std::string> files;
   OctreeOutputs octree_outputs;
+  std::vector<std::string> image_files;      // report.html's map images
+  std::vector<std::string> transform_files;  // launch files and bag
+  double images_ms = 0.0;
   if (folder) {
-    files = WriteOutputs(folder->staging_dir(), result, job.options.threads, written);
-    octree_outputs = WriteMergedOctrees(result, job_octrees, folder->staging_dir(), {}, kStaged);
-    for (const auto& f : octree_outputs.merged_files) {
-      if (!f.empty()) written.push_back(f);
-    }
+    const std::filesystem::path& dir = folder->staging_dir();
+    std::vector<const OccupancyGrid*> maps;
+    for (const OccupancyGrid& map : result.maps) maps.push_back(&map);
+    // Two lanes: report.html's map images depend on the maps alone, so they are encoded while the
+    // merged maps, octrees, launch files and bag are written (each lane mostly one core).
+    ParallelFor(2, job.options.threads, [&](std::size_t lane) {
+      if (lane == 0) {
+        const auto images_start = Clock::now();
+        image_files = WriteHtmlMapImages(maps, dir, {}, job.options.threads, kStaged);
+        images_ms = MillisecondsSince(images_start);
+        return;
+      }
+      const auto write_start = Clock::now();
+      files = WriteOutputs(dir, result, job.options.threads, written);
+      octree_outputs = WriteMergedOctrees(result, job_octrees, dir, {}, kStaged);
+      for (const auto& f : octree_outputs.merged_files) {
+        if (!f.empty()) written.push_back(f);
+      }
+      timing.write_ms = MillisecondsSince(write_start);
+      timing.total_ms = load_ms + MillisecondsSince(start);
+      WriteFileAtomically(dir / kRos2LaunchFile, Ros2TransformsLaunch(job, result), {}, kStaged);
+      WriteFileAtomically(dir / kRos1LaunchFile, Ros1TransformsLaunch(job, result), {}, kStaged);
+      transform_files = {kRos2LaunchFile, kRos1LaunchFile};
+      WriteMergedBag(dir, job, result, transform_files);
+    });
   } else {
+    const auto write_start = Clock::now();
     files = MergedFileNames(result);
     octree_outputs.z_m = VerticalOffsets(result, job_octrees);
     octree_outputs.merged_files.assign(result.components.size(), "");
+    timing.write_ms = MillisecondsSince(write_start);
+    timing.total_ms = load_ms + MillisecondsSince(start);
   }
-  timing.write_ms = MillisecondsSince(write_start);
-  timing.total_ms = load_ms + MillisecondsSince(start);
   outcome.report = MakeReport(job, result, files, timing);
   AddOctreesToReport(outcome.report, job_octrees, octree_outputs);
   if (outcome.cache) {
@@ -298,23 +321,20 @@ JobOutcome RunLoadedJob(const Job& job, const std::vector<LoadedMap>& loaded,
                                         {"stamp_ns", bag.stamp_ns}};
   }
   if (folder) {
-    // report.html (pipeline/html_report.hpp) is part of the set; its write time is added to
-    // report.json after the page is made (the page shows the times before it).
-    const auto html_start = Clock::now();
-    const std::vector<std::string> html_files =
-        WriteHtmlReport(HtmlReportOfJob(job, loaded, result, outcome.report, files),
-                        folder->staging_dir(), {}, job.options.threads, kStaged);
-    written.insert(written.end(), html_files.begin(), html_files.end());
-    outcome.report["timing_ms"]["report_html"] = MillisecondsSince(html_start);
+    // report.html (pipeline/html_report.hpp) is part of the set; its write time (its images' and
+    // its page's) is added to report.json after the page is made (the page shows the times
+    // before it).
+    const auto page_start = Clock::now();
+    written.insert(written.end(), image_files.begin(), image_files.end());
+    const std::vector<std::string> page_files =
+        WriteHtmlPage(HtmlReportOfJob(job, loaded, result, outcome.report, files),
+                      folder->staging_dir(), {}, kStaged);
+    written.insert(written.end(), page_files.begin(), page_files.end());
+    outcome.report["timing_ms"]["report_html"] = images_ms + MillisecondsSince(page_start);
     WriteFileAtomically(folder->staging_dir() / "report.json", outcome.report.dump(2) + "\n", {},
                         kStaged);
     written.push_back("report.json");
-    WriteFileAtomically(folder->staging_dir() / kRos2LaunchFile, Ros2TransformsLaunch(job, result),
-                        {}, kStaged);
-    WriteFileAtomically(folder->staging_dir() / kRos1LaunchFile, Ros1TransformsLaunch(job, result),
-                        {}, kStaged);
-    written.insert(written.end(), {kRos2LaunchFile, kRos1LaunchFile});
-    WriteMergedBag(folder->staging_dir(), job, result, written);
+    written.insert(written.end(), transform_files.begin(), transform_files.end());
     folder->Publish(written);
   }
   return outcome;
