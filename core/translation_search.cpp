@@ -21,10 +21,9 @@ namespace {
 // site's pooling (30 cells) a robot of a 50 m path was 89 deg off
 // (FixedBase.SmallRobotsAreFoundInASiteOfFourBuildings); at twice the robot's extent (8-10
 // cells) all 60 robots of scripts/large_site_benchmark.sh (50 and 100 m) were right.
-int PoolingFor(const OccupancyGrid& a, double b_extent_cells, int coarse_max_side) {
-  const double a_side = std::max(double(a.width()), double(a.height()));
-  const double larger = std::max(a_side, b_extent_cells);
-  const double smaller = std::min(a_side, b_extent_cells);
+int PoolingFor(double a_extent_cells, double b_extent_cells, int coarse_max_side) {
+  const double larger = std::max(a_extent_cells, b_extent_cells);
+  const double smaller = std::min(a_extent_cells, b_extent_cells);
   const double side = std::max(std::min(larger, 2.0 * smaller), larger / 4.0);
   return std::max(1, static_cast<int>(std::ceil(side / std::max(coarse_max_side, 8))));
 }
@@ -178,9 +177,17 @@ std::vector<TranslationCandidate> SurfacePeaks(const cv::Mat1f& surface, int cou
 
 }  // namespace
 
+double FixedExtentCells(const OccupancyGrid& a) {
+  return std::max(double(a.width()), double(a.height()));
+}
+
+double RotatedExtentCells(const OccupancyGrid& b) {
+  return std::hypot(double(b.width()), double(b.height()));
+}
+
 int CorrelationPooling(const OccupancyGrid& a, const OccupancyGrid& b,
                        const TranslationOptions& options) {
-  return PoolingFor(a, std::hypot(double(b.width()), double(b.height())), options.coarse_max_side);
+  return PoolingFor(FixedExtentCells(a), RotatedExtentCells(b), options.coarse_max_side);
 }
 
 CorrelationTranslation::PointBox CorrelationTranslation::Bounds(

@@ -39,6 +39,11 @@ struct TranslationCandidate {
   double score = 0.0;
 };
 
+// A map's extent in the correlation search, in cells: map a, the fixed image, spans its larger
+// side; map b, rotated over it, its diagonal (the side of the square any rotation of b fits in).
+double FixedExtentCells(const OccupancyGrid& a);
+double RotatedExtentCells(const OccupancyGrid& b);
+
 // Cells per coarse pixel of the correlation search for b against a: it sets the precision of
 // the translation candidates (about half a pixel), which local refinement must then bridge.
 int CorrelationPooling(const OccupancyGrid& a, const OccupancyGrid& b,

@@ -93,15 +93,6 @@ void WriteAll(int fd, const std::string& bytes, const fs::path& path) {
   }
 }
 
-// Makes the rename itself durable. Best effort: some file systems cannot fsync a folder.
-void SyncFolder(const fs::path& path) {
-  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
-}
-
 void WriteAndRename(int raw_fd, const fs::path& temp_path, const fs::path& path,
                     const std::string& bytes, AtomicWrite mode) {
   FileDescriptor fd(raw_fd);
@@ -128,6 +119,13 @@ void CheckNotAnInput(const fs::path& path, const std::vector<fs::path>& protecte
   }
 }
 
+void SyncFolder(const fs::path& folder) {
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
 void WriteFileAtomically(const fs::path& path, const std::string& bytes,
                          const std::vector<fs::path>& protected_inputs, AtomicWrite mode) {
   CheckNotAnInput(path, protected_inputs);
@@ -141,7 +139,10 @@ void WriteFileAtomically(const fs::path& path, const std::string& bytes,
     fs::remove(temp_path, ignored);
     throw;
   }
-  if (mode == AtomicWrite::kDurable) SyncFolder(path);
+  // Makes the rename itself durable.
+  if (mode == AtomicWrite::kDurable) {
+    SyncFolder(path.has_parent_path() ? path.parent_path() : fs::path("."));
+  }
 }
 
 }  // namespace fleetmerge

@@ -34,4 +34,8 @@ void WriteFileAtomically(const std::filesystem::path& path, const std::string& b
                          const std::vector<std::filesystem::path>& protected_inputs = {},
                          AtomicWrite mode = AtomicWrite::kDurable);
 
+// fsyncs `folder` (its entries: the renames into it). Best effort: some file systems cannot fsync
+// a folder, and a folder that cannot be opened is skipped.
+void SyncFolder(const std::filesystem::path& folder);
+
 }  // namespace fleetmerge

@@ -39,13 +39,6 @@ bool StartsWith(const std::string& text, const std::string& prefix) {
   return text.compare(0, prefix.size(), prefix) == 0;
 }
 
-void SyncFolder(const fs::path& folder) {  // best effort, as in atomic_file.cpp
-  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
-}
-
 bool IsInside(const fs::path& file, const fs::path& folder) {
   if (file.empty()) return false;
   std::error_code ec;

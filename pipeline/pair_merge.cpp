@@ -7,6 +7,7 @@
 #include "core/acceptance_index.hpp"
 #include "core/parallel.hpp"
 #include "core/resample.hpp"
+#include "core/translation_search.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -68,7 +69,7 @@ int CoarseScale(const OccupancyGrid& a, const OccupancyGrid& b, const PairOption
 // rooms of other buildings (scripts/large_site_benchmark.sh with PATH_M 50); maps of similar
 // size, a fleet's robots, are searched as given.
 bool SearchedFromB(const OccupancyGrid& a, const OccupancyGrid& b) {
-  return std::max(a.width(), a.height()) > 2.0 * std::hypot(b.width(), b.height());
+  return FixedExtentCells(a) > 2.0 * RotatedExtentCells(b);
 }
 
 }  // namespace

@@ -64,8 +64,8 @@ double OracleEvidence(const OccupancyGrid& a, const OccupancyGrid& b, const Pose
   // Chance for walls: the same pose 4 cells off along each axis of the receiving map.
   const auto chance = [&](const OccupancyGrid& onto, const OccupancyGrid& from, const Pose2& T) {
     double near = 0, judged = 0;
-    for (const Eigen::Vector2d shift : {Eigen::Vector2d(4, 0), Eigen::Vector2d(-4, 0),
-                                        Eigen::Vector2d(0, 4), Eigen::Vector2d(0, -4)}) {
+    for (const Eigen::Vector2d& shift : {Eigen::Vector2d(4, 0), Eigen::Vector2d(-4, 0),
+                                         Eigen::Vector2d(0, 4), Eigen::Vector2d(0, -4)}) {
       const auto [n, j] = walls_on(onto, from, Pose2(shift, 0.0) * T);
       near += n;
       judged += j;
