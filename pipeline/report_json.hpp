@@ -16,7 +16,8 @@
 //            whose best passes the thresholds but whose hypotheses all contradict the priors:
 //            "refused: ...")
 //   timing_ms: load, pairs, refine, composite, write, total; report_html (writing report.html,
-//              pipeline/html_report.hpp, after `total` was taken) when the set is written
+//              pipeline/html_report.hpp: its map images, made while the merged maps are
+//              written, and its page, after `total` was taken) when the set is written
 // Jobs with octrees add (pipeline/octree_maps.hpp, AddOctreesToReport): maps[].pose.z and
 // maps[].floor_z for octree maps, components[].merged_octree, timing_ms.octree_projection and
 // octree_write.
