@@ -10,6 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 
+#include "tests/support/files.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {
@@ -87,6 +88,39 @@ TEST(HtmlReport, MapWithoutCellsGetsNoImageAndDoesNotFailThePage) {
                   .at("maps")[0]
                   .at("image")
                   .is_null());
+}
+
+TEST(HtmlReport, MapImagesThenPageWriteWhatTheWholeReportWrites) {
+  // The job writes the images while its merged maps are written and the page after the report
+  // (pipeline/job_run.cpp); `pair --out` writes both at once. The same files either way.
+  OccupancyGrid a(GridGeometry(0.05, {7, 5}, Pose2(0.5, -1.0, 0.2)));
+  a.set({2, 1}, CellState::kOccupied);
+  a.set({4, 3}, CellState::kFree);
+  const OccupancyGrid empty(GridGeometry(0.05, {0, 0}));
+  OccupancyGrid b(GridGeometry(0.05, {3, 9}), CellState::kFree);
+  b.set({1, 8}, CellState::kOccupied);
+  HtmlReport page = OneMapPage(a, "a");
+  page.maps.push_back({&empty, Pose2(), "empty.yaml", 0, 0, 0.05});
+  page.maps.push_back({&b, Pose2(1.0, 0.0, 0.0), "b.yaml", 3, 9, 0.05});
+  const fs::path whole = testing::MakeTempDir("html_report_whole");
+  const fs::path parts = testing::MakeTempDir("html_report_parts");
+  const std::vector<std::string> written_whole = WriteHtmlReport(page, whole, {}, 2);
+  std::vector<std::string> written_parts = WriteHtmlMapImages({&a, &empty, &b}, parts, {}, 2);
+  for (const std::string& name : WriteHtmlPage(page, parts, {})) written_parts.push_back(name);
+  EXPECT_EQ(written_whole,
+            (std::vector<std::string>{"report_map_0.png", "report_map_2.png", "report.html"}));
+  EXPECT_EQ(written_parts, written_whole);
+  for (const std::string& name : written_whole) {
+    EXPECT_EQ(testing::ReadFile(parts / name), testing::ReadFile(whole / name)) << name;
+  }
+  EXPECT_FALSE(fs::exists(parts / "report_map_1.png"));
+  // Each image is its own map's (by index, whichever thread wrote it): b's 3 x 9 cells with its
+  // wall at the top row (grid row 8).
+  const cv::Mat image = cv::imread((parts / "report_map_2.png").string(), cv::IMREAD_UNCHANGED);
+  ASSERT_EQ(image.type(), CV_8UC4);
+  EXPECT_EQ(image.cols, 3);
+  EXPECT_EQ(image.rows, 9);
+  EXPECT_EQ(image.at<cv::Vec4b>(0, 1), cv::Vec4b(0, 0, 0, 255));
 }
 
 TEST(HtmlReport, GraphNodeSitsAtTheMapsKnownCentreInPreviewPixels) {
