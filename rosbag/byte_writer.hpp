@@ -31,7 +31,7 @@ class ByteWriter {
   std::string& mutable_bytes() { return bytes_; }
   // Room for `total` bytes in all: a writer that knows its size (a map's cells) grows once.
   void Reserve(std::size_t total) { bytes_.reserve(total); }
-  // The bytes, moved out; the writer is left empty.
+  // The bytes, moved out: the writer's last use.
   std::string Release() { return std::move(bytes_); }
 
  private:
@@ -60,8 +60,8 @@ class CdrWriter {
     Put(static_cast<std::uint32_t>(bytes.size()));
     out_.Bytes(bytes);
   }
-  // ByteSequence of `count` elements that the caller writes into the returned bytes: a map's
-  // cells go into the message once, not through a copy.
+  // ByteSequence of `count` elements that the caller writes into the returned bytes (valid
+  // until the next write): a map's cells go into the message once, not through a copy.
   char* ByteSequenceToFill(std::size_t count) {
     Put(static_cast<std::uint32_t>(count));
     std::string& bytes = out_.mutable_bytes();
