@@ -110,11 +110,13 @@ std::string McapWriter::Finish() const {
   }
 
   // The chunk's records; each message's offset inside them goes to its channel's MessageIndex.
-  ByteWriter chunk_records;
-  std::uint64_t chunk_bytes = 0;
+  // Schema and channel records, in the chunk and again in the summary.
+  std::uint64_t definition_bytes = 0;
   for (const auto* records : {&schema_records, &channel_records}) {
-    for (const std::string& r : *records) chunk_bytes += kRecordHeaderBytes + r.size();
+    for (const std::string& r : *records) definition_bytes += kRecordHeaderBytes + r.size();
   }
+  ByteWriter chunk_records;
+  std::uint64_t chunk_bytes = definition_bytes;
   for (const Message& m : messages_) {
     chunk_bytes += kRecordHeaderBytes + kMessageFieldsBytes + m.data.size();
   }
@@ -139,11 +141,9 @@ std::string McapWriter::Finish() const {
   if (messages_.empty()) start_ns = 0;
 
   ByteWriter file;
-  // The chunk and everything around it: the indexes, metadata and summary are small.
-  std::uint64_t around_bytes = 4096;
-  for (const auto* records : {&schema_records, &channel_records}) {
-    for (const std::string& r : *records) around_bytes += kRecordHeaderBytes + r.size();
-  }
+  // The chunk and everything around it: the definitions again, the metadata, and the indexes
+  // and summary records, which are small.
+  std::uint64_t around_bytes = definition_bytes + 4096;
   for (const Metadata& m : metadata_) {
     around_bytes += m.name.size() + 64;
     for (const auto& [key, value] : m.entries) around_bytes += key.size() + value.size() + 8;
