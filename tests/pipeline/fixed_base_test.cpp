@@ -296,9 +296,9 @@ void ExpectRobotsFoundInTheSite(double path_length_m, const char* what) {
 
 TEST(FixedBase, RobotsAreFoundInASiteOfFourBuildings) {
   // A site 4000 cells across against robots ~1200 across. Searched with the site as map a and
-  // the coarse pixel set by the site alone (21 cells, 1 m), robot1 in GDC floor 2 lost to rooms
+  // the coarse pixel set by the site alone (21 cells, 1 m), robot1 in GDC floor 2 loses to rooms
   // of the other buildings: 44.6 deg off, its map's centre 2518 cells away (walls 0.08). The pair
-  // is now searched from the robot (SearchedFromB) with the site counted up to twice the robot's
+  // is searched from the robot (SearchedFromB) with the site counted up to twice the robot's
   // extent (PoolingFor); either alone finds robot1 here, the 50 m robots below need both.
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   ExpectRobotsFoundInTheSite(100.0, "100 m paths:");
@@ -306,7 +306,7 @@ TEST(FixedBase, RobotsAreFoundInASiteOfFourBuildings) {
 
 TEST(FixedBase, SmallRobotsAreFoundInASiteOfFourBuildings) {
   // Robots of 50 m paths (~800 cells across). Searched with the site as map a, none of robot2's
-  // 4 best hypotheses had its rotation (93 deg off); searched from the robot with the site's
+  // 4 best hypotheses has its rotation (93 deg off); searched from the robot with the site's
   // pooling (30 cells), 89 deg off. Right with both rules.
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   ExpectRobotsFoundInTheSite(50.0, "50 m paths:");
