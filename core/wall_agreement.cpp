@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "core/image_filters.hpp"
 #include "core/image_masks.hpp"
@@ -110,6 +111,13 @@ MapWalls::MapWalls(const OccupancyGrid& grid)
       centres(OccupiedCellCenters(grid)),
       near_walls(NearWallMask(grid)),
       known_spans(KnownRowSpans(grid)) {}
+
+MapWalls::MapWalls(const OccupancyGrid& grid, std::vector<Eigen::Vector2f> centres,
+                   cv::Mat1b near_walls, RowSpans known_spans)
+    : grid(grid),
+      centres(std::move(centres)),
+      near_walls(std::move(near_walls)),
+      known_spans(std::move(known_spans)) {}
 
 double SymmetricWallAgreement(const MapWalls& a, const MapWalls& b, const Pose2& T_ga_gb) {
   return std::min(WallAgreement(a.grid, a.near_walls, b.centres, T_ga_gb),

@@ -69,6 +69,9 @@ double SymmetricWallAgreement(const OccupancyGrid& a, const OccupancyGrid& b, co
 // (CountAgreement's fast path, the same counts).
 struct MapWalls {
   explicit MapWalls(const OccupancyGrid& grid);  // keeps a reference to `grid`
+  // From parts already made for `grid` (core/map_features.hpp computes the same three).
+  MapWalls(const OccupancyGrid& grid, std::vector<Eigen::Vector2f> centres, cv::Mat1b near_walls,
+           RowSpans known_spans);
   const OccupancyGrid& grid;
   std::vector<Eigen::Vector2f> centres;  // OccupiedCellCenters(grid)
   cv::Mat1b near_walls;                  // NearWallMask(grid)

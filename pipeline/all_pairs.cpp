@@ -42,7 +42,8 @@ PairOutcome ComputePair(const std::vector<std::unique_ptr<PreparedMap>>& maps, i
 std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
                                          const PairOptions& options, int threads,
                                          const ProgressFn& progress, PairCache* cache,
-                                         const FixedMapPairs* fixed_maps) {
+                                         const FixedMapPairs* fixed_maps,
+                                         std::vector<std::optional<MapWalls>>* walls) {
   std::vector<std::pair<int, int>> jobs;
   for (int a = 0; a < static_cast<int>(maps.size()); ++a) {
     for (int b = a + 1; b < static_cast<int>(maps.size()); ++b) jobs.emplace_back(a, b);
@@ -108,8 +109,14 @@ std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
   const auto prepare = [&](int m) {
     std::call_once(made[m], [&] { prepared[m] = std::make_unique<PreparedMap>(maps[m], options); });
   };
+  if (walls) {
+    walls->clear();
+    walls->resize(maps.size());
+  }
   const auto release = [&](int m) {
-    if (--pairs_left[m] == 0) prepared[m].reset();
+    if (--pairs_left[m] != 0) return;
+    if (walls) (*walls)[m].emplace(prepared[m]->TakeWalls());  // its own slot: no other thread's
+    prepared[m].reset();
   };
   std::atomic<int> done{cached_count};
   std::mutex progress_mutex;

@@ -5,10 +5,12 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/occupancy_grid.hpp"
+#include "core/wall_agreement.hpp"
 #include "pipeline/pair_merge.hpp"
 
 namespace fleetmerge {
@@ -53,11 +55,15 @@ struct FixedMapPairs {
 // the two may differ only in what a pair's search does with the maps, not in how each map is
 // prepared (pipeline/prepared_map.hpp). With a cache, pairs found there are taken as they are,
 // the others computed and stored, and only the maps of computed pairs are prepared: the same
-// outcomes as without it.
+// outcomes as without it. With `walls`, each prepared map's walls (MapWalls, for the judging of
+// the solved pairs that follows, pipeline/corroboration.hpp) are handed on there once its last
+// pair is done, instead of being made again from its cells; the maps not prepared (every pair
+// from the cache) are left nullopt.
 std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
                                          const PairOptions& options, int threads,
                                          const ProgressFn& progress = {},
                                          PairCache* cache = nullptr,
-                                         const FixedMapPairs* fixed_maps = nullptr);
+                                         const FixedMapPairs* fixed_maps = nullptr,
+                                         std::vector<std::optional<MapWalls>>* walls = nullptr);
 
 }  // namespace fleetmerge

@@ -257,8 +257,10 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
     fixed_map_pairs.emplace(FixedMapPairs{fixed_maps, pair_options});
     fixed_map_pairs->options.hypotheses.translation.free_penalty = options.fixed_map_free_penalty;
   }
+  // The walls of the maps prepared for the pairs computed, kept for the judging below.
+  std::vector<std::optional<MapWalls>> made;
   result.pairs = ComputeAllPairs(result.maps, pair_options, options.threads, progress, cache,
-                                 fixed_map_pairs ? &*fixed_map_pairs : nullptr);
+                                 fixed_map_pairs ? &*fixed_map_pairs : nullptr, &made);
   if (cache) cache->Close();  // trimmed and released: another job may use it while this one goes on
   result.timing.pairs_ms = MillisecondsSince(start);
 
@@ -295,10 +297,11 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
   FleetGraph graph =
       SolveFleetGraph(static_cast<int>(maps.size()), result.pairs, reference, options.pose_graph,
                       fixed, priors, anchor, options.min_bridge_wall_agreement);
-  // Made once, in parallel: every round judges the pairs again.
-  std::vector<std::optional<MapWalls>> made(result.maps.size());
-  ParallelFor(made.size(), options.threads,
-              [&](std::size_t m) { made[m].emplace(result.maps[m]); });
+  // Made once, in parallel (but for those the pair search handed on): every round judges the
+  // pairs again.
+  ParallelFor(made.size(), options.threads, [&](std::size_t m) {
+    if (!made[m]) made[m].emplace(result.maps[m]);
+  });
   std::vector<MapWalls> walls;
   walls.reserve(made.size());
   for (auto& w : made) walls.push_back(std::move(*w));

@@ -1,5 +1,7 @@
 #include "pipeline/prepared_map.hpp"
 
+#include <utility>
+
 #include "core/resample.hpp"
 
 namespace fleetmerge {
@@ -21,6 +23,11 @@ const AlignmentTarget& PreparedMap::Target(int scale) const {
                        truncation_cells_);
   }
   return *target;
+}
+
+MapWalls PreparedMap::TakeWalls() {
+  return MapWalls(features_.grid, std::move(features_.occupied), std::move(features_.near_walls),
+                  std::move(features_.known_spans));
 }
 
 }  // namespace fleetmerge

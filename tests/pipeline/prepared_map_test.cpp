@@ -6,8 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <random>
 
+#include "core/wall_agreement.hpp"
 #include "io/map_io.hpp"
 #include "pipeline/all_pairs.hpp"
 #include "pipeline/pair_merge.hpp"
@@ -78,6 +80,28 @@ TEST(PreparedMapTest, OnePairOnSeveralThreadsGivesTheOneThreadHypotheses) {
     }
   }
   EXPECT_GT(compared, 30);
+}
+
+// The walls a fleet's judging needs (core/wall_agreement.hpp) are handed on by the pair search,
+// which made them with each map's features: they must be what MapWalls makes from the cells.
+TEST(PreparedMapTest, WallsHandedOnAreTheMapsOwnWalls) {
+  std::mt19937 rng(44);
+  const GroundTruthFleet fleet = CutFleet(Building(), 4, rng);
+  std::vector<std::optional<MapWalls>> walls;
+  ComputeAllPairs(fleet.maps, PairOptions{}, /*threads=*/2, {}, nullptr, nullptr, &walls);
+  ASSERT_EQ(walls.size(), fleet.maps.size());
+  for (std::size_t m = 0; m < walls.size(); ++m) {
+    ASSERT_TRUE(walls[m]) << "map " << m;
+    const MapWalls own(fleet.maps[m]);
+    EXPECT_EQ(&walls[m]->grid, &fleet.maps[m]);
+    ASSERT_FALSE(own.centres.empty());
+    EXPECT_EQ(walls[m]->centres, own.centres) << "map " << m;
+    ASSERT_EQ(walls[m]->near_walls.size(), own.near_walls.size());
+    EXPECT_EQ(cv::countNonZero(walls[m]->near_walls != own.near_walls), 0) << "map " << m;
+    EXPECT_GT(cv::countNonZero(own.near_walls), 0);
+    EXPECT_EQ(walls[m]->known_spans.row_begin, own.known_spans.row_begin) << "map " << m;
+    EXPECT_EQ(walls[m]->known_spans.runs, own.known_spans.runs) << "map " << m;
+  }
 }
 
 TEST(PreparedMapTest, TargetsAreBuiltOncePerScaleAndShared) {
