@@ -257,10 +257,11 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
     fixed_map_pairs.emplace(FixedMapPairs{fixed_maps, pair_options});
     fixed_map_pairs->options.hypotheses.translation.free_penalty = options.fixed_map_free_penalty;
   }
-  // The walls of the maps prepared for the pairs computed, kept for the judging below.
-  std::vector<std::optional<MapWalls>> made;
+  // Each map's walls, for the judging below: the pair search hands on those of the maps it
+  // prepared.
+  std::vector<std::optional<MapWalls>> map_walls;
   result.pairs = ComputeAllPairs(result.maps, pair_options, options.threads, progress, cache,
-                                 fixed_map_pairs ? &*fixed_map_pairs : nullptr, &made);
+                                 fixed_map_pairs ? &*fixed_map_pairs : nullptr, &map_walls);
   if (cache) cache->Close();  // trimmed and released: another job may use it while this one goes on
   result.timing.pairs_ms = MillisecondsSince(start);
 
@@ -299,12 +300,12 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
                       fixed, priors, anchor, options.min_bridge_wall_agreement);
   // Made once, in parallel (but for those the pair search handed on): every round judges the
   // pairs again.
-  ParallelFor(made.size(), options.threads, [&](std::size_t m) {
-    if (!made[m]) made[m].emplace(result.maps[m]);
+  ParallelFor(map_walls.size(), options.threads, [&](std::size_t m) {
+    if (!map_walls[m]) map_walls[m].emplace(result.maps[m]);
   });
   std::vector<MapWalls> walls;
-  walls.reserve(made.size());
-  for (auto& w : made) walls.push_back(std::move(*w));
+  walls.reserve(map_walls.size());
+  for (auto& w : map_walls) walls.push_back(std::move(*w));
   // Each round rejects at least one edge, so this ends.
   for (std::size_t round = 0; round <= result.pairs.size(); ++round) {
     if (const auto weak = WeakestBridge(static_cast<int>(maps.size()), result.pairs,
