@@ -65,15 +65,15 @@ std::vector<CellHypothesis> GenerateHypotheses(const MapFeatures& fa, const MapF
   const OccupancyGrid& a = fa.grid;
   const OccupancyGrid& b = fb.grid;
   CheckSameResolution(a, b);
-  const std::vector<Eigen::Vector2f>& b_points = fb.occupied;
-  if (fa.occupied.empty() || b_points.empty()) return {};
+  const std::vector<Eigen::Vector2f>& b_points = fb.walls.centres;
+  if (fa.walls.centres.empty() || b_points.empty()) return {};
   const std::vector<double>& hs_a = fa.hough_spectrum;
   const std::vector<double>& hs_b = fb.hough_spectrum;
 
   const std::vector<Eigen::Vector2f>& b_spectra_points = fb.spectra_points;
   // The correlation search also needs where b is open (core/translation_search.hpp).
   const std::vector<Eigen::Vector2f>& b_free_points = fb.free;
-  const RowSpans& b_spans = fb.known_spans;
+  const RowSpans& b_spans = fb.walls.known_spans;
   const bool sampled = b_spectra_points.size() != b_points.size();
   // Rotation candidates come as (psi, psi + pi) pairs (RotationCandidates).
   const std::vector<double> yaws = RotationCandidates(hs_a, hs_b, options.rotation_peaks);

@@ -10,23 +10,38 @@
 
 namespace fleetmerge {
 
-MapFeatures::MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& options)
-    : grid(grid), known_spans(KnownRowSpans(grid)), near_walls(NearWallMask(grid)) {
+namespace {
+
+// The occupied cell centres; with the correlation search the free ones too, into `free`, in the
+// same pass (the search also needs open space).
+std::vector<Eigen::Vector2f> OccupiedCentres(const OccupancyGrid& grid,
+                                             const HypothesisOptions& options,
+                                             std::vector<Eigen::Vector2f>* free) {
+  std::vector<Eigen::Vector2f> occupied;
   if (options.translation.method == TranslationMethod::kCorrelation2D) {
-    OccupiedAndFreeCellCenters(grid, &occupied, &free);  // the search also needs open space
+    OccupiedAndFreeCellCenters(grid, &occupied, free);
   } else {
     occupied = OccupiedCellCenters(grid);
   }
+  return occupied;
+}
+
+}  // namespace
+
+MapFeatures::MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& options)
+    : grid(grid),  // `free` (declared before `walls`) is made before it is filled here
+      walls(grid, OccupiedCentres(grid, options, &free), NearWallMask(grid), KnownRowSpans(grid)) {
   const double known = cv::countNonZero(grid.cells());  // kUnknown is 0
   if (known > 0) {
     near_wall_share =
-        cv::countNonZero(MaskAnd(near_walls, CompareMask(grid.cells(), cv::CMP_NE, 0))) / known;
+        cv::countNonZero(MaskAnd(walls.near_walls, CompareMask(grid.cells(), cv::CMP_NE, 0))) /
+        known;
     occupied_share = grid.Count(CellState::kOccupied) / known;
   }
-  spectra_points = SamplePoints(occupied, options.spectra_sampling);
-  if (!occupied.empty()) {
+  spectra_points = SamplePoints(walls.centres, options.spectra_sampling);
+  if (!walls.centres.empty()) {
     hough_spectrum = HoughSpectrum(
-        ComputeHoughTransform(SamplePoints(occupied, options.hough_sampling), options.hough));
+        ComputeHoughTransform(SamplePoints(walls.centres, options.hough_sampling), options.hough));
   }
 }
 

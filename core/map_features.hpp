@@ -12,6 +12,7 @@
 #include "core/acceptance_index.hpp"
 #include "core/hypothesis_generator.hpp"
 #include "core/occupancy_grid.hpp"
+#include "core/wall_agreement.hpp"
 
 namespace fleetmerge {
 
@@ -20,13 +21,13 @@ struct MapFeatures {
   MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& options);
 
   const OccupancyGrid& grid;
-  std::vector<Eigen::Vector2f> occupied;        // OccupiedCellCenters(grid)
-  std::vector<Eigen::Vector2f> free;            // CellCenters(grid, kFree): correlation search
-  std::vector<Eigen::Vector2f> spectra_points;  // occupied, sampled by spectra_sampling
-  std::vector<double> hough_spectrum;           // of occupied sampled by hough_sampling; empty
-                                                // when the map has no occupied cell
-  RowSpans known_spans;                         // KnownRowSpans(grid)
-  cv::Mat1b near_walls;                         // NearWallMask(grid): core/wall_agreement.hpp
+  std::vector<Eigen::Vector2f> free;  // CellCenters(grid, kFree): correlation search
+  // Its occupied cell centres (walls.centres), known row spans and near-wall mask: MapWalls(grid),
+  // which a fleet's judging of solved pairs takes over (pipeline/prepared_map.hpp).
+  MapWalls walls;
+  std::vector<Eigen::Vector2f> spectra_points;  // walls.centres, sampled by spectra_sampling
+  std::vector<double> hough_spectrum;           // of walls.centres sampled by hough_sampling;
+                                                // empty when the map has no occupied cell
   // Chance rates of core/pose_evidence.hpp, as shares of the known cells (0 for an empty map).
   double near_wall_share = 0.0;
   double occupied_share = 0.0;

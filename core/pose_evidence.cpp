@@ -59,11 +59,13 @@ WallCounts CountBothWays(const MapFeatures& a, const MapFeatures& b, CellHypothe
   WallCounts c{};
   const Pose2 T_gb_ga = h.T_ga_gb.inverse();
   if (chance) {
-    c.b_on_a = CountWallsAndShifted(a.grid, a.near_walls, b.occupied, h.T_ga_gb, kChanceShifts);
-    c.a_on_b = CountWallsAndShifted(b.grid, b.near_walls, a.occupied, T_gb_ga, kChanceShifts);
+    c.b_on_a =
+        CountWallsAndShifted(a.grid, a.walls.near_walls, b.walls.centres, h.T_ga_gb, kChanceShifts);
+    c.a_on_b =
+        CountWallsAndShifted(b.grid, b.walls.near_walls, a.walls.centres, T_gb_ga, kChanceShifts);
   } else {
-    c.b_on_a[0] = CountWalls(a.grid, a.near_walls, b.occupied, h.T_ga_gb);
-    c.a_on_b[0] = CountWalls(b.grid, b.near_walls, a.occupied, T_gb_ga);
+    c.b_on_a[0] = CountWalls(a.grid, a.walls.near_walls, b.walls.centres, h.T_ga_gb);
+    c.a_on_b[0] = CountWalls(b.grid, b.walls.near_walls, a.walls.centres, T_gb_ga);
   }
   // SymmetricWallAgreement
   h.wall_agreement = std::min(c.b_on_a[0].share(), c.a_on_b[0].share());

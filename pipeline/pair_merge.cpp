@@ -26,7 +26,7 @@ struct PairContext {
         scale(scale),
         target_a(a.Target(scale)),
         target_b(b.Target(scale)),
-        b_spans(b.features().known_spans) {}
+        b_spans(b.features().walls.known_spans) {}
   const OccupancyGrid& a;
   const OccupancyGrid& b;
   int scale;
@@ -87,7 +87,7 @@ RankedHypotheses RankedCellHypotheses(const OccupancyGrid& a, const OccupancyGri
   ParallelFor(2, threads, [&](std::size_t k) {
     prepared[k] = std::make_unique<PreparedMap>(*grids[k], options);
     // The final refinement's target, made here in parallel (a map without walls has none).
-    if (options.refine && !prepared[k]->features().occupied.empty()) prepared[k]->Target(1);
+    if (options.refine && !prepared[k]->features().walls.centres.empty()) prepared[k]->Target(1);
   });
   return RankedCellHypotheses(*prepared[0], *prepared[1], options, threads);
 }

@@ -16,18 +16,15 @@ const AlignmentTarget& PreparedMap::Target(int scale) const {
   std::unique_ptr<const AlignmentTarget>& target = targets_[scale];
   if (!target) {
     const OccupancyGrid& grid = features_.grid;
-    target = scale == 1
-                 ? std::make_unique<const AlignmentTarget>(features_.occupied, truncation_cells_)
-                 : std::make_unique<const AlignmentTarget>(
-                       ResampleToResolution(grid, grid.geometry().resolution_m() * scale),
-                       truncation_cells_);
+    target = scale == 1 ? std::make_unique<const AlignmentTarget>(features_.walls.centres,
+                                                                  truncation_cells_)
+                        : std::make_unique<const AlignmentTarget>(
+                              ResampleToResolution(grid, grid.geometry().resolution_m() * scale),
+                              truncation_cells_);
   }
   return *target;
 }
 
-MapWalls PreparedMap::TakeWalls() {
-  return MapWalls(features_.grid, std::move(features_.occupied), std::move(features_.near_walls),
-                  std::move(features_.known_spans));
-}
+MapWalls PreparedMap::TakeWalls() { return std::move(features_.walls); }
 
 }  // namespace fleetmerge

@@ -11,7 +11,6 @@
 
 #include "core/map_features.hpp"
 #include "core/occupancy_grid.hpp"
-#include "core/wall_agreement.hpp"
 #include "job/pair_options.hpp"
 #include "refine/local_alignment.hpp"
 
@@ -31,9 +30,9 @@ class PreparedMap {
   // PairOptions::refine_truncation_cells. Made on first use; safe to call from several threads.
   const AlignmentTarget& Target(int scale) const;
 
-  // The map's walls for the judging of solved pairs (core/wall_agreement.hpp), moved out of the
-  // features, which MapFeatures makes with the same three functions: for the map's last pair to
-  // hand on (pipeline/all_pairs.hpp). The features must not be used afterwards.
+  // The map's walls for the judging of solved pairs (core/wall_agreement.hpp), moved out of its
+  // features (MapFeatures::walls): for the map's last pair to hand on (pipeline/all_pairs.hpp).
+  // The features must not be used afterwards.
   MapWalls TakeWalls();
 
  private:
