@@ -140,6 +140,10 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
     const PairCacheStats& cache = *outcome.cache;
     out << job.name << ": pairs: " << cache.pairs_cached << " from the cache, "
         << cache.pairs_computed << " computed";
+    if (cache.maps_prepared > 0) {  // the maps of the pairs computed
+      out << "; maps' preparations: " << cache.preparations_kept << " from the cache, "
+          << cache.maps_prepared - cache.preparations_kept << " made";
+    }
     if (cache.rejected > 0) out << "; " << cache.rejected << " bad cache entries rebuilt";
     // Never this job's entries (CacheFolder::Evict): older ones, of this job or others.
     if (cache.eviction.removed > 0) {
@@ -149,13 +153,15 @@ void RunAndPrintJob(const Job& job, bool quiet, bool force, double lock_wait_s, 
     if (cache.eviction.over_bound) {
       err << "fleetmerge: warning: job '" << job.name << "': the cache's size bound ("
           << job.options.cache_max_mb << " MiB, --cache-max-mb / cache_max_mb) is below this job's "
-          << cache.eviction.in_use << " pairs (" << MebibytesText(cache.eviction.in_use_bytes)
-          << " MiB); they were all kept, so " << job.options.cache_dir.string()
-          << " holds more than its bound; raise the bound to keep other jobs' pairs too\n";
+          << cache.eviction.in_use << " entries, its pairs and maps' preparations ("
+          << MebibytesText(cache.eviction.in_use_bytes) << " MiB); they were all kept, so "
+          << job.options.cache_dir.string()
+          << " holds more than its bound; raise the bound to keep other jobs' entries too\n";
     }
     if (cache.write_failures > 0) {
       err << "fleetmerge: warning: job '" << job.name << "': " << cache.write_failures
-          << " pair(s) could not be stored in the cache: " << cache.first_write_error << "\n";
+          << " cache entries (pairs or maps' preparations) could not be stored: "
+          << cache.first_write_error << "\n";
     }
   }
 }

@@ -28,7 +28,8 @@ std::vector<Eigen::Vector2f> OccupiedCentres(const OccupancyGrid& grid,
 
 }  // namespace
 
-MapFeatures::MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& options)
+MapFeatures::MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& options,
+                         const std::vector<double>* cached_hough_spectrum)
     : grid(grid),  // `free` (declared before `walls`) is made before it is filled here
       walls(grid, OccupiedCentres(grid, options, &free), NearWallMask(grid), KnownRowSpans(grid)) {
   const double known = cv::countNonZero(grid.cells());  // kUnknown is 0
@@ -39,7 +40,9 @@ MapFeatures::MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& opt
     occupied_share = grid.Count(CellState::kOccupied) / known;
   }
   spectra_points = SamplePoints(walls.centres, options.spectra_sampling);
-  if (!walls.centres.empty()) {
+  if (cached_hough_spectrum != nullptr) {
+    hough_spectrum = *cached_hough_spectrum;
+  } else if (!walls.centres.empty()) {
     hough_spectrum = HoughSpectrum(
         ComputeHoughTransform(SamplePoints(walls.centres, options.hough_sampling), options.hough));
   }

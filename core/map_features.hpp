@@ -17,8 +17,12 @@
 namespace fleetmerge {
 
 struct MapFeatures {
-  // Keeps a reference to `grid`, which must outlive the features.
-  MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& options);
+  // Keeps a reference to `grid`, which must outlive the features. `cached_hough_spectrum`, when
+  // given, is the map's hough_spectrum made before with the same options (a cache's,
+  // pipeline/pair_cache.hpp): taken as it is instead of computed again (the Hough transform is
+  // the features' dearest part).
+  MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& options,
+              const std::vector<double>* cached_hough_spectrum = nullptr);
 
   const OccupancyGrid& grid;
   std::vector<Eigen::Vector2f> free;  // CellCenters(grid, kFree): correlation search

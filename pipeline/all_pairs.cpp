@@ -101,13 +101,23 @@ std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
   // 3-5 MB each, and its threads reuse the freed memory instead of faulting in fresh pages.
   std::vector<std::unique_ptr<PreparedMap>> prepared(maps.size());
   std::vector<std::once_flag> made(maps.size());
+  std::vector<char> from_cache(maps.size(), 0);  // prepared from what the cache kept
   std::vector<std::atomic<int>> pairs_left(maps.size());
   for (const std::size_t k : missing) {
     ++pairs_left[jobs[k].first];
     ++pairs_left[jobs[k].second];
   }
+  // With a cache, a map's dearest preparation (its Hough spectrum and alignment targets) is
+  // taken from the cache when it kept it, and kept after the map's last pair when this run made
+  // any of it (pipeline/pair_cache.hpp). A map is prepared with `options` in either kind of pair.
   const auto prepare = [&](int m) {
-    std::call_once(made[m], [&] { prepared[m] = std::make_unique<PreparedMap>(maps[m], options); });
+    std::call_once(made[m], [&] {
+      std::optional<KeptPreparation> kept;
+      if (cache) kept = cache->FindPreparation(options_digest[0], digests[m]);
+      prepared[m] = kept ? std::make_unique<PreparedMap>(maps[m], options, std::move(*kept))
+                         : std::make_unique<PreparedMap>(maps[m], options);
+      from_cache[m] = kept.has_value();
+    });
   };
   if (walls) {
     walls->clear();
@@ -115,6 +125,9 @@ std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
   }
   const auto release = [&](int m) {
     if (--pairs_left[m] != 0) return;
+    if (cache && (!from_cache[m] || prepared[m]->targets_made() > 0)) {
+      cache->StorePreparation(options_digest[0], digests[m], *prepared[m]);
+    }
     if (walls) (*walls)[m].emplace(prepared[m]->TakeWalls());  // its own slot: no other thread's
     prepared[m].reset();
   };

@@ -24,6 +24,7 @@
 #include "io/content_hash.hpp"
 #include "job/pair_options.hpp"
 #include "pipeline/all_pairs.hpp"
+#include "pipeline/prepared_map.hpp"
 
 namespace fleetmerge {
 
@@ -37,14 +38,22 @@ ContentDigest PairOptionsDigest(const PairOptions& options, const std::string& v
 std::string PairOutcomePayload(const PairOutcome& outcome);
 std::optional<PairOutcome> ParsePairOutcome(const std::string& payload);
 
+// What a cache keeps of a prepared map (KeptPreparation: its Hough spectrum and the targets made
+// so far, by scale), and back. The values are their bytes, so the map prepared again from them
+// gives its pairs the same hypotheses bit for bit. ParsePreparation returns nullopt for bytes
+// that are not such a payload.
+std::string PreparationPayload(const PreparedMap& map);
+std::optional<KeptPreparation> ParsePreparation(const std::string& payload);
+
 // Counts of one job's use of the cache.
 struct PairCacheStats {
-  int pairs_cached = 0;    // taken from the cache
-  int pairs_computed = 0;  // computed (and stored)
-  int maps_prepared = 0;   // maps prepared for the pairs computed (pipeline/prepared_map.hpp)
-  int rejected = 0;        // entries found corrupt, truncated, foreign or of another version
-  CacheEviction eviction;  // older entries evicted for the size bound, never this job's
-  int write_failures = 0;  // entries that could not be stored (the job goes on without them)
+  int pairs_cached = 0;       // taken from the cache
+  int pairs_computed = 0;     // computed (and stored)
+  int maps_prepared = 0;      // maps prepared for the pairs computed (pipeline/prepared_map.hpp)
+  int preparations_kept = 0;  // of those, prepared from what the cache kept of them
+  int rejected = 0;           // entries found corrupt, truncated, foreign or of another version
+  CacheEviction eviction;     // older entries evicted for the size bound, never this job's
+  int write_failures = 0;     // entries that could not be stored (the job goes on without them)
   std::string first_write_error;
 };
 
@@ -63,6 +72,13 @@ class PairCache {
   // computed: it is counted, and the first message kept, in stats().
   void StorePair(const ContentDigest& options, const ContentDigest& a, const ContentDigest& b,
                  const PairOutcome& outcome);
+  // The same for a map's preparation (keyed by the pair options and the map's digest): what the
+  // cache kept of it, or nullopt; and keeping it (what PreparationPayload holds), a failure
+  // counted as StorePair's.
+  std::optional<KeptPreparation> FindPreparation(const ContentDigest& options,
+                                                 const ContentDigest& map);
+  void StorePreparation(const ContentDigest& options, const ContentDigest& map,
+                        const PreparedMap& prepared);
   // Evicts the least recently used entries beyond the size bound (CacheFolder::Evict) and
   // releases the folder for other jobs. MergeFleet closes its cache once the pairs are done, so
   // a job holds the cache only during its pair search. Nothing but stats() afterwards; a second
@@ -78,10 +94,12 @@ class PairCache {
  private:
   static ContentDigest PairKey(const ContentDigest& options, const ContentDigest& a,
                                const ContentDigest& b);
+  static ContentDigest PreparationKey(const ContentDigest& options, const ContentDigest& map);
   std::string version_;
   CacheFolder folder_;
   bool closed_ = false;
   std::atomic<int> pairs_cached_{0}, pairs_computed_{0}, maps_prepared_{0}, write_failures_{0};
+  std::atomic<int> preparations_kept_{0};
   CacheEviction eviction_;
   mutable std::mutex error_mutex_;
   std::string first_write_error_;

@@ -138,6 +138,11 @@ AlignmentTarget::AlignmentTarget(const std::vector<Eigen::Vector2f>& wall_centre
                                  double truncation_cells)
     : field(wall_centres, truncation_cells), wall_points(ToDouble(wall_centres)) {}
 
+AlignmentTarget::AlignmentTarget(const std::vector<Eigen::Vector2f>& wall_centres,
+                                 double truncation_cells, const Eigen::Array2i& offset_cells,
+                                 const cv::Mat1f& distances, const cv::Mat1b& flat)
+    : field(truncation_cells, offset_cells, distances, flat), wall_points(ToDouble(wall_centres)) {}
+
 LocalAlignmentResult RefineAlignment(const AlignmentTarget& a, const AlignmentTarget& b,
                                      const Pose2& T_ga_gb_initial,
                                      const LocalAlignmentOptions& options) {

@@ -32,6 +32,11 @@ struct AlignmentTarget {
   explicit AlignmentTarget(const OccupancyGrid& grid, double truncation_cells = 6.0);
   // From the grid's OccupiedCellCenters: one pass over the grid for the field and the points.
   AlignmentTarget(const std::vector<Eigen::Vector2f>& wall_centres, double truncation_cells);
+  // A target made before (a cache's): its field's parts (WallDistanceField) and the wall centres
+  // it was made from.
+  AlignmentTarget(const std::vector<Eigen::Vector2f>& wall_centres, double truncation_cells,
+                  const Eigen::Array2i& offset_cells, const cv::Mat1f& distances,
+                  const cv::Mat1b& flat);
   WallDistanceField field;
   std::vector<Eigen::Vector2d> wall_points;
 };

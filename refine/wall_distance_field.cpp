@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/error.hpp"
 #include "core/image_filters.hpp"
 #include "core/image_masks.hpp"
 #include "core/point_sampling.hpp"
@@ -55,6 +56,19 @@ WallDistanceField::WallDistanceField(const std::vector<Eigen::Vector2f>& walls,
   // (1, 1) of the cells below the truncation value, the border replicated as the grid does.
   const cv::Mat1b near = CompareMask(distances_, cv::CMP_LT, static_cast<float>(truncation_cells));
   flat_ = CompareMask(MaxFilter<1, 2>(near), cv::CMP_EQ, 0);
+  grid_ = std::make_unique<Grid>(Grid{distances_.ptr<float>(), distances_.rows, distances_.cols});
+  interpolator_ = std::make_unique<Interpolator>(*grid_);
+}
+
+WallDistanceField::WallDistanceField(double truncation_cells, const Eigen::Array2i& offset_cells,
+                                     const cv::Mat1f& distances, const cv::Mat1b& flat)
+    : truncation_cells_(truncation_cells),
+      offset_(offset_cells),
+      distances_(distances.isContinuous() ? distances : distances.clone()),
+      flat_(flat) {
+  if (distances.empty() || distances.size() != flat.size()) {
+    throw Error("wall distance field: distances and flat mask must be one non-empty size");
+  }
   grid_ = std::make_unique<Grid>(Grid{distances_.ptr<float>(), distances_.rows, distances_.cols});
   interpolator_ = std::make_unique<Interpolator>(*grid_);
 }

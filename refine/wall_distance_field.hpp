@@ -37,6 +37,11 @@ class WallDistanceField {
   WallDistanceField(const OccupancyGrid& grid, double truncation_cells);
   // The same field from the grid's OccupiedCellCenters, where the caller has them already.
   WallDistanceField(const std::vector<Eigen::Vector2f>& wall_centres, double truncation_cells);
+  // A field made before (a cache's, pipeline/pair_cache.hpp) from what offset(), distances() and
+  // flat() gave: the same field. Throws fleetmerge::Error when the two grids differ in size or
+  // are empty.
+  WallDistanceField(double truncation_cells, const Eigen::Array2i& offset_cells,
+                    const cv::Mat1f& distances, const cv::Mat1b& flat);
   WallDistanceField(const WallDistanceField&) = delete;
   WallDistanceField& operator=(const WallDistanceField&) = delete;
 
@@ -59,6 +64,9 @@ class WallDistanceField {
     return false;
   }
   double truncation_cells() const { return truncation_cells_; }
+  const Eigen::Array2i& offset() const { return offset_; }
+  const cv::Mat1f& distances() const { return distances_; }
+  const cv::Mat1b& flat() const { return flat_; }
 
  private:
   // Whether the 4 x 4 samples the interpolator reads at (r, c) (rows floor(r) - 1 ..

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "io/folder_lock.hpp"
 #include "tests/support/files.hpp"
@@ -197,23 +198,24 @@ TEST_F(MergeCacheCliTest, ACacheInsideTheOutputFolderIsRefused) {
 TEST_F(MergeCacheCliTest, AGarbageEntryIsRebuilt) {
   const fs::path cache = dir_ / "cache";
   ASSERT_EQ(Merge(dir_ / "out", "--cache " + ShellQuote(cache)).exit_code, 0);
-  int entries = 0;
+  int entries = 0;  // the pair and its two maps' preparations
   for (const auto& f : fs::directory_iterator(cache)) {
     if (f.path().extension() != ".entry") continue;
     WriteFile(f.path(), "garbage, not a cache entry");
     ++entries;
   }
-  ASSERT_EQ(entries, 1);
+  ASSERT_EQ(entries, 3);
   const auto rebuilt = Merge(dir_ / "out", "--cache " + ShellQuote(cache));
   ASSERT_EQ(rebuilt.exit_code, 0) << rebuilt.both();
   EXPECT_TRUE(Contains(rebuilt.out,
-                       "pairs: 0 from the cache, 1 computed; 1 bad cache entries "
-                       "rebuilt"))
+                       "pairs: 0 from the cache, 1 computed; maps' preparations: 0 from the "
+                       "cache, 2 made; 3 bad cache entries rebuilt\n"))
       << rebuilt.out;
   const json report = json::parse(ReadFile(dir_ / "out" / "report.json"));
-  EXPECT_EQ(report["cache"]["entries_rejected"], 1);
+  EXPECT_EQ(report["cache"]["entries_rejected"], 3);
+  EXPECT_EQ(report["cache"]["preparations_kept"], 0);
   const auto again = Merge(dir_ / "out", "--cache " + ShellQuote(cache));
-  EXPECT_TRUE(Contains(again.out, "pairs: 1 from the cache, 0 computed")) << again.out;
+  EXPECT_TRUE(Contains(again.out, "pairs: 1 from the cache, 0 computed\n")) << again.out;
 }
 
 // A folder or a FIFO in an entry's place is a bad entry like garbage: the job succeeds (before,
@@ -222,31 +224,37 @@ TEST_F(MergeCacheCliTest, AGarbageEntryIsRebuilt) {
 TEST_F(MergeCacheCliTest, AFolderOrAFifoInAnEntrysPlaceIsRebuilt) {
   const fs::path cache = dir_ / "cache";
   ASSERT_EQ(Merge(dir_ / "out", "--cache " + ShellQuote(cache)).exit_code, 0);
-  fs::path entry;
+  std::vector<fs::path> entries;  // the pair and its two maps' preparations
   for (const auto& f : fs::directory_iterator(cache)) {
-    if (f.path().extension() == ".entry") entry = f.path();
+    if (f.path().extension() == ".entry") entries.push_back(f.path());
   }
-  ASSERT_FALSE(entry.empty());
+  ASSERT_EQ(entries.size(), 3u);
   for (const std::string what : {"folder", "fifo"}) {
-    fs::remove(entry);
-    if (what == "folder") {
-      fs::create_directory(entry);
-    } else {
-      ASSERT_EQ(::mkfifo(entry.c_str(), 0644), 0);
+    for (const fs::path& entry : entries) {
+      fs::remove(entry);
+      if (what == "folder") {
+        fs::create_directory(entry);
+      } else {
+        ASSERT_EQ(::mkfifo(entry.c_str(), 0644), 0);
+      }
     }
     const auto rebuilt = Merge(dir_ / "out", "--cache " + ShellQuote(cache));
     ASSERT_EQ(rebuilt.exit_code, 0) << what << ": " << rebuilt.both();
-    EXPECT_TRUE(
-        Contains(rebuilt.out, "pairs: 0 from the cache, 1 computed; 1 bad cache entries rebuilt"))
+    EXPECT_TRUE(Contains(rebuilt.out,
+                         "pairs: 0 from the cache, 1 computed; maps' preparations: 0 from the "
+                         "cache, 2 made; 3 bad cache entries rebuilt\n"))
         << what << ": " << rebuilt.out;
-    EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(entry))) << what;
+    for (const fs::path& entry : entries) {
+      EXPECT_TRUE(fs::is_regular_file(fs::symlink_status(entry))) << what;
+    }
   }
 }
 
-// 24 maps make 276 pairs, more than the smallest bound (1 MiB: ~250 entries of a 4 KiB block):
-// the job keeps them all (its re-run takes every pair from the cache) and warns. The maps are
-// one small room (40 x 40 cells) at 24 origins: an entry's size does not depend on the map's,
-// and 276 pairs of larger maps would cost a minute under the sanitizers.
+// 24 maps make 276 pairs and 24 maps' preparations, more than the smallest bound (1 MiB: ~250
+// entries of a 4 KiB block): the job keeps them all (its re-run takes every pair from the cache)
+// and warns. The maps are one small room (40 x 40 cells) at 24 origins: a pair's entry does not
+// depend on the maps' size, and 276 pairs of larger maps would cost a minute under the
+// sanitizers.
 TEST_F(MergeCacheCliTest, ABoundBelowTheJobsPairsKeepsThemAndWarns) {
   constexpr int kCells = 40;
   std::string pgm = "P5\n" + std::to_string(kCells) + " " + std::to_string(kCells) + "\n255\n";
@@ -271,17 +279,25 @@ TEST_F(MergeCacheCliTest, ABoundBelowTheJobsPairsKeepsThemAndWarns) {
                             ShellQuote(cache) + " --cache-max-mb 1" + maps;
   const auto first = Fleetmerge(merge);
   ASSERT_EQ(first.exit_code, 0) << first.both();
-  EXPECT_TRUE(Contains(first.out, "pairs: 0 from the cache, 276 computed\n")) << first.out;
+  EXPECT_TRUE(Contains(first.out,
+                       "pairs: 0 from the cache, 276 computed; maps' preparations: 0 from the "
+                       "cache, 24 made\n"))
+      << first.out;
   EXPECT_TRUE(Contains(first.err,
                        "fleetmerge: warning: job 'merge': the cache's size bound (1 MiB, "
-                       "--cache-max-mb / cache_max_mb) is below this job's 276 pairs"))
+                       "--cache-max-mb / cache_max_mb) is below this job's 300 entries, its "
+                       "pairs and maps' preparations ("))
       << first.err;
   const json report = json::parse(ReadFile(dir_ / "out" / "report.json"));
   EXPECT_EQ(report["cache"]["bound_below_job"], true);
-  EXPECT_EQ(report["cache"]["entries_in_use"], 276);
+  EXPECT_EQ(report["cache"]["entries_in_use"], 300);  // 276 pairs, 24 maps' preparations
   EXPECT_EQ(report["cache"]["entries_evicted"], 0);
+  // The re-run takes every pair and prepares no map: the maps' preparations are the older
+  // entries the bound evicts, not the pairs it used.
   const auto again = Fleetmerge(merge);
-  EXPECT_TRUE(Contains(again.out, "pairs: 276 from the cache, 0 computed\n")) << again.out;
+  EXPECT_TRUE(Contains(again.out,
+                       "pairs: 276 from the cache, 0 computed; 24 older cache entries evicted\n"))
+      << again.out;
 }
 
 // `--cache ""` is an error naming the flag, not a silent way to turn the cache off (a job file's

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "core/error.hpp"
 #include "io/map_io.hpp"
 #include "pipeline/fleet_merge.hpp"
+#include "pipeline/prepared_map.hpp"
 #include "sim/ground_truth_pair.hpp"
 #include "tests/support/shared_data.hpp"
 
@@ -85,18 +87,48 @@ void ExpectSameMerge(const FleetResult& expected, const FleetResult& actual) {
   }
 }
 
-std::vector<fs::path> Entries(const fs::path& dir) {
-  std::vector<fs::path> entries;
-  for (const auto& f : fs::directory_iterator(dir)) {
-    if (f.path().extension() == ".entry") entries.push_back(f.path());
-  }
-  return entries;
-}
-
 std::string ReadBytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
+
+// A sound entry file's key and payload (io/cache_folder.hpp's layout).
+struct EntryParts {
+  ContentDigest key{};
+  std::string payload;
+};
+EntryParts PartsOf(const fs::path& entry) {
+  const std::string bytes = ReadBytes(entry);
+  std::size_t at = 16 + 4 + 4;  // magic, format, byte order
+  std::uint32_t version_size = 0;
+  std::memcpy(&version_size, bytes.data() + at, 4);
+  at += 4 + version_size;
+  EntryParts parts;
+  std::memcpy(parts.key.data(), bytes.data() + at, 16);
+  at += 16;
+  std::uint64_t payload_size = 0;
+  std::memcpy(&payload_size, bytes.data() + at, 8);
+  parts.payload = bytes.substr(at + 8, payload_size);
+  return parts;
+}
+
+// The sound entries in `dir` whose payload starts with `tag` ("pair": pairs, "prep": maps'
+// preparations).
+std::vector<fs::path> Entries(const fs::path& dir, const char* tag = "pair") {
+  std::uint32_t want = 0;
+  for (int k = 0; k < 4; ++k) want = (want << 8) | static_cast<std::uint8_t>(tag[k]);
+  std::vector<fs::path> entries;
+  for (const auto& f : fs::directory_iterator(dir)) {
+    if (f.path().extension() != ".entry") continue;
+    const std::string payload = PartsOf(f.path()).payload;
+    std::uint32_t got = 0;
+    if (payload.size() >= 4) std::memcpy(&got, payload.data(), 4);
+    if (got == want) entries.push_back(f.path());
+  }
+  std::sort(entries.begin(), entries.end());
+  return entries;
+}
+std::vector<fs::path> PreparationEntries(const fs::path& dir) { return Entries(dir, "prep"); }
 
 void WriteBytes(const fs::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
@@ -144,7 +176,9 @@ TEST_F(PairCacheTest, ARerunTakesEveryPairFromTheCacheWithTheSameResult) {
   EXPECT_EQ(cold.pairs_cached, 0);
   EXPECT_EQ(cold.pairs_computed, 6);
   EXPECT_EQ(cold.maps_prepared, 4);
+  EXPECT_EQ(cold.preparations_kept, 0);
   EXPECT_EQ(Entries(dir_).size(), 6u);
+  EXPECT_EQ(PreparationEntries(dir_).size(), 4u);  // each map's, kept after its last pair
   const FleetResult second = Cached(4, warm);
   EXPECT_EQ(warm.pairs_cached, 6);
   EXPECT_EQ(warm.pairs_computed, 0);
@@ -164,9 +198,53 @@ TEST_F(PairCacheTest, OneMapMoreComputesOnlyItsPairs) {
   const FleetResult cached = Cached(5, five);
   EXPECT_EQ(five.pairs_cached, 6);
   EXPECT_EQ(five.pairs_computed, 4);
-  EXPECT_EQ(five.maps_prepared, 5);  // each new pair has an old map in it
+  EXPECT_EQ(five.maps_prepared, 5);      // each new pair has an old map in it
+  EXPECT_EQ(five.preparations_kept, 4);  // the old maps' from the cache, the new one's made
   EXPECT_EQ(Entries(dir_).size(), 10u);
+  EXPECT_EQ(PreparationEntries(dir_).size(), 5u);
   ExpectSameMerge(Uncached(5), cached);
+}
+
+// Pairs computed from kept preparations are the pairs computed from scratch: every pair entry
+// removed, every map's preparation is taken from the cache and every pair computed again.
+TEST_F(PairCacheTest, PairsFromKeptPreparationsAreThePairsWithout) {
+  PairCacheStats first, second;
+  Cached(4, first);
+  for (const fs::path& entry : Entries(dir_)) fs::remove(entry);
+  const FleetResult result = Cached(4, second);
+  EXPECT_EQ(second.pairs_computed, 6);
+  EXPECT_EQ(second.maps_prepared, 4);
+  EXPECT_EQ(second.preparations_kept, 4);
+  EXPECT_EQ(second.rejected, 0);
+  ExpectSameMerge(Uncached(4), result);
+}
+
+// A bad preparation entry is not trusted either: garbage, truncated, corrupt (rejected by the
+// cache folder's checks), a sound entry holding a pair's payload, and one whose payload is cut
+// (rejected by ParsePreparation); each map is prepared again, with the same pairs.
+TEST_F(PairCacheTest, BadPreparationEntriesAreRebuilt) {
+  PairCacheStats first;
+  Cached(4, first);
+  const std::vector<fs::path> pairs = Entries(dir_);
+  const std::vector<fs::path> preparations = PreparationEntries(dir_);
+  ASSERT_EQ(preparations.size(), 4u);
+  const EntryParts pair = PartsOf(pairs[0]);
+  for (const fs::path& entry : pairs) fs::remove(entry);
+  WriteBytes(preparations[0], "garbage");
+  std::string bytes = ReadBytes(preparations[1]);
+  WriteBytes(preparations[1], bytes.substr(0, bytes.size() / 2));
+  const EntryParts cut = PartsOf(preparations[2]);
+  WriteBytes(preparations[2],
+             CacheEntryBytes(cut.key, kVersion, cut.payload.substr(0, cut.payload.size() - 1)));
+  const EntryParts other = PartsOf(preparations[3]);
+  WriteBytes(preparations[3], CacheEntryBytes(other.key, kVersion, pair.payload));
+  PairCacheStats rebuilt;
+  const FleetResult result = Cached(4, rebuilt);
+  EXPECT_EQ(rebuilt.rejected, 4);
+  EXPECT_EQ(rebuilt.preparations_kept, 0);
+  EXPECT_EQ(rebuilt.pairs_computed, 6);
+  ExpectSameMerge(Uncached(4), result);
+  EXPECT_EQ(PreparationEntries(dir_).size(), 4u);  // written anew
 }
 
 TEST_F(PairCacheTest, GarbageTruncatedAndCorruptEntriesAreRebuilt) {
@@ -316,7 +394,7 @@ TEST_F(PairCacheTest, ABoundBelowTheJobsPairsKeepsThemAll) {
   }
   EXPECT_EQ(first.pairs_computed, 3);
   EXPECT_EQ(first.eviction.removed, 0);
-  EXPECT_EQ(first.eviction.in_use, 3);
+  EXPECT_EQ(first.eviction.in_use, 6);  // 3 pairs and the 3 maps' preparations
   EXPECT_TRUE(first.eviction.over_bound);
   EXPECT_EQ(again.pairs_cached, 3);
   EXPECT_EQ(again.pairs_computed, 0);
@@ -381,6 +459,79 @@ TEST(PairOutcomePayload, RoundTripsBitForBitAndRefusesOtherBytes) {
   std::string huge_count = payload;
   huge_count[4] = '\xff';
   EXPECT_FALSE(ParsePairOutcome(huge_count));
+}
+
+// Two preparations of one map hold the same values, bit for bit.
+void ExpectSamePreparation(const PreparedMap& expected, const PreparedMap& actual) {
+  const std::vector<double>& e = expected.features().hough_spectrum;
+  const std::vector<double>& a = actual.features().hough_spectrum;
+  ASSERT_EQ(a.size(), e.size());
+  EXPECT_FALSE(e.empty());
+  EXPECT_EQ(std::memcmp(a.data(), e.data(), e.size() * sizeof(double)), 0);
+  const auto expected_targets = expected.Targets();
+  const auto actual_targets = actual.Targets();
+  ASSERT_EQ(actual_targets.size(), expected_targets.size());
+  for (const auto& [scale, target] : expected_targets) {
+    ASSERT_EQ(actual_targets.count(scale), 1u) << "scale " << scale;
+    const AlignmentTarget& other = *actual_targets.at(scale);
+    const WallDistanceField& f = target->field;
+    const WallDistanceField& g = other.field;
+    EXPECT_EQ(g.truncation_cells(), f.truncation_cells());
+    EXPECT_TRUE((g.offset() == f.offset()).all()) << "scale " << scale;
+    ASSERT_EQ(g.distances().size(), f.distances().size()) << "scale " << scale;
+    for (int r = 0; r < f.distances().rows; ++r) {
+      ASSERT_EQ(std::memcmp(g.distances().ptr<float>(r), f.distances().ptr<float>(r),
+                            f.distances().cols * sizeof(float)),
+                0)
+          << "scale " << scale << " row " << r;
+    }
+    EXPECT_EQ(cv::countNonZero(g.flat() != f.flat()), 0) << "scale " << scale;
+    EXPECT_EQ(other.wall_points, target->wall_points) << "scale " << scale;
+  }
+}
+
+// A prepared map's kept parts give the same preparation back, with the field's cells indexed
+// (the default truncation: a few distinct distances) and as floats (a truncation of 30 cells:
+// more distinct distances than the index holds); other bytes are refused.
+TEST_F(PairCacheTest, PreparationPayloadRoundTripsBitForBitAndRefusesOtherBytes) {
+  for (const double truncation_cells : {PairOptions{}.refine_truncation_cells, 30.0}) {
+    PairOptions options;
+    options.refine_truncation_cells = truncation_cells;
+    const PreparedMap prepared(fleet_.maps[1], options);
+    for (const int scale : {1, 2, 4}) prepared.Target(scale);
+    const std::string payload = PreparationPayload(prepared);
+    std::optional<KeptPreparation> kept = ParsePreparation(payload);
+    ASSERT_TRUE(kept) << truncation_cells;
+    EXPECT_EQ(kept->targets.size(), 3u);
+    const PreparedMap again(fleet_.maps[1], options, std::move(*kept));
+    EXPECT_EQ(again.targets_made(), 0);
+    ExpectSamePreparation(prepared, again);
+    EXPECT_EQ(PreparationPayload(again), payload);
+    // Cut anywhere, one byte more, another payload: refused.
+    for (const std::size_t size : {std::size_t{0}, std::size_t{3}, payload.size() / 3,
+                                   payload.size() / 2, payload.size() - 1}) {
+      EXPECT_FALSE(ParsePreparation(payload.substr(0, size))) << size;
+    }
+    EXPECT_FALSE(ParsePreparation(payload + "x"));
+    EXPECT_FALSE(ParsePreparation(PairOutcomePayload(PairOutcome{})));
+    EXPECT_FALSE(ParsePairOutcome(payload));
+  }
+  // Indexed cells: a cell whose index is beyond the field's table of distances is refused.
+  const PreparedMap prepared(fleet_.maps[1], PairOptions{});
+  prepared.Target(1);
+  std::string payload = PreparationPayload(prepared);
+  // The first cell's byte: after the tag, the spectrum's size and values, the target count, the
+  // scale, the offset's x and y, rows, cols, the encoding, the table's size and values.
+  std::size_t at = 4;
+  std::uint32_t n = 0;
+  std::memcpy(&n, payload.data() + at, 4);
+  at += 4 + n * sizeof(double) + 4 + 4 + 16;
+  ASSERT_EQ(payload[at], 0);  // indexed
+  std::memcpy(&n, payload.data() + at + 1, 4);
+  at += 1 + 4 + n * sizeof(float);
+  ASSERT_TRUE(ParsePreparation(payload));
+  payload[at] = static_cast<char>(n);  // one past the table, flat bit clear
+  EXPECT_FALSE(ParsePreparation(payload));
 }
 
 }  // namespace
