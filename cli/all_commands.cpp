@@ -88,8 +88,8 @@ int RunAllCommands(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   merge_app->add_option("--cache", merge.cache_dir,
-                        "keep pairs' hypotheses in this folder and reuse them in re-runs (every "
-                        "job; a job file's 'cache' otherwise)");
+                        "keep pairs' hypotheses and maps' preparations in this folder and reuse "
+                        "them in re-runs (every job; a job file's 'cache' otherwise)");
   merge_app
       ->add_option("--cache-max-mb", merge.cache_max_mb,
                    "size bound of the cache folder in MiB (default " +

@@ -1,8 +1,7 @@
 // A folder of cache entries that re-runs share (the pair cache, pipeline/pair_cache.hpp, keeps
-// its pairs' hypotheses here; maps' preparations are not kept: docs/speed.md, "Re-runs"). Each
-// entry is one file, `<key>.entry`, named by the 32 hex digits of its key (io/content_hash.hpp:
-// the hash of everything its content depends on) and written atomically (io/atomic_file.hpp).
-// Its bytes:
+// its pairs' hypotheses and its maps' preparations here). Each entry is one file, `<key>.entry`,
+// named by the 32 hex digits of its key (io/content_hash.hpp: the hash of everything its content
+// depends on) and written atomically (io/atomic_file.hpp). Its bytes:
 //
 //   "fleetmerge cache" (16 bytes)  format magic
 //   u32 kFormatVersion             this layout

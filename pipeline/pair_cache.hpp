@@ -11,6 +11,13 @@
 //   - fleetmerge's version (a new version may compute other hypotheses).
 // What the entry holds is exactly what ComputeAllPairs returns for the pair (doubles as their
 // bytes), so a merge with the cache is the merge without it, bit for bit.
+//
+// Beside the pairs, each map's preparation for the pair search (pipeline/prepared_map.hpp): a
+// map new to the cache is paired with maps it has seen, whose Hough spectra and alignment
+// targets (the preparation's dearest parts, KeptPreparation) are read back instead of made
+// again. Its entry is keyed by the pair options' digest and the map's (a map is prepared the
+// same way whatever it is paired with) and holds the values as their bytes: the pairs are the
+// same bit for bit. docs/speed.md ("Re-runs") has what it saves.
 #pragma once
 
 #include <atomic>
