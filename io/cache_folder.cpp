@@ -64,9 +64,11 @@ std::optional<std::string> ParseEntry(const std::string& bytes, const ContentDig
 }
 
 constexpr std::size_t kKeyDigits = 2 * sizeof(ContentDigest);
-// Entries hold a pair's few hypotheses (~330 bytes): a file beyond this is no entry, and is not
-// read whole into memory.
-constexpr std::size_t kLargestEntryBytes = std::size_t(1) << 24;
+// Entries hold a pair's few hypotheses (~330 bytes) or a map's kept preparation (about a byte a
+// cell of its distance fields: 13.5 MB for scripts/large_site_benchmark.sh's 4000 x 4000 site,
+// ~130 MB for a map of max_map_cells' default 10^8 cells): a file beyond this is no entry, and is
+// not read whole into memory.
+constexpr std::size_t kLargestEntryBytes = std::size_t(1) << 30;
 // Format 1 named its entries by 64 hex digits (SHA-256 keys): no reader finds them any more.
 constexpr std::size_t kFormat1KeyDigits = 64;
 
@@ -107,6 +109,7 @@ std::optional<std::string> ReadRegularFile(const fs::path& path, std::size_t lim
   std::optional<std::string> bytes;
   if (::fstat(fd, &info) == 0 && S_ISREG(info.st_mode)) {
     bytes.emplace();
+    bytes->reserve(std::min(static_cast<std::size_t>(std::max<off_t>(info.st_size, 0)), limit));
     char buffer[1 << 16];
     while (bytes->size() < limit) {
       const ssize_t n = ::read(fd, buffer, std::min(sizeof buffer, limit - bytes->size()));
@@ -263,8 +266,12 @@ void CacheFolder::MarkUsed(const ContentDigest& key) {
 
 void CacheFolder::Write(const ContentDigest& key, const std::string& payload) {
   CheckLocked();
-  WriteFileAtomically(EntryPath(key), CacheEntryBytes(key, version_, payload), {},
-                      AtomicWrite::kNoSync);
+  const std::string bytes = CacheEntryBytes(key, version_, payload);
+  if (bytes.size() > kLargestEntryBytes) {  // Read would refuse it
+    throw Error(EntryPath(key).string() + ": an entry of " + std::to_string(bytes.size()) +
+                " bytes, more than an entry may hold (" + std::to_string(kLargestEntryBytes) + ")");
+  }
+  WriteFileAtomically(EntryPath(key), bytes, {}, AtomicWrite::kNoSync);
   MarkUsed(key);
 }
 

@@ -65,11 +65,13 @@ TEST_F(CacheFolderTest, EntriesRoundTripAcrossOpenings) {
     EXPECT_FALSE(cache.Read(Key("a")));
     cache.Write(Key("a"), std::string("payload\0with a zero", 19));
     cache.Write(Key("b"), "");
+    cache.Write(Key("large"), std::string(20 << 20, 'x'));  // a large site map's preparation
     EXPECT_EQ(cache.rejected(), 0);
   }
   CacheFolder cache(dir_, "1.2.3", Options());
   EXPECT_EQ(cache.Read(Key("a")).value_or("absent"), std::string("payload\0with a zero", 19));
   EXPECT_EQ(cache.Read(Key("b")).value_or("absent"), "");
+  EXPECT_EQ(cache.Read(Key("large")).value_or("absent"), std::string(20 << 20, 'x'));
   EXPECT_FALSE(cache.Read(Key("c")));
   EXPECT_EQ(cache.rejected(), 0);
   EXPECT_TRUE(fs::exists(dir_ / "CACHEDIR.TAG"));
