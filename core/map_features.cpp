@@ -40,7 +40,10 @@ MapFeatures::MapFeatures(const OccupancyGrid& grid, const HypothesisOptions& opt
     occupied_share = grid.Count(CellState::kOccupied) / known;
   }
   spectra_points = SamplePoints(walls.centres, options.spectra_sampling);
-  if (cached_hough_spectrum != nullptr) {
+  // A spectrum of another length is no spectrum of this map with these options: made anew.
+  const std::size_t spectrum_size =
+      walls.centres.empty() ? 0 : static_cast<std::size_t>(options.hough.n_theta);
+  if (cached_hough_spectrum != nullptr && cached_hough_spectrum->size() == spectrum_size) {
     hough_spectrum = *cached_hough_spectrum;
   } else if (!walls.centres.empty()) {
     hough_spectrum = HoughSpectrum(

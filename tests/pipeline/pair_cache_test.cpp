@@ -516,6 +516,19 @@ TEST_F(PairCacheTest, PreparationPayloadRoundTripsBitForBitAndRefusesOtherBytes)
     EXPECT_FALSE(ParsePreparation(PairOutcomePayload(PairOutcome{})));
     EXPECT_FALSE(ParsePairOutcome(payload));
   }
+  // A kept spectrum is taken as it is (not made again), unless its length is not this map's
+  // with these options.
+  {
+    const PreparedMap original(fleet_.maps[1], PairOptions{});
+    KeptPreparation kept;
+    kept.hough_spectrum = original.features().hough_spectrum;
+    kept.hough_spectrum[0] += 1.0;
+    const std::vector<double> taken = kept.hough_spectrum;
+    EXPECT_EQ(PreparedMap(fleet_.maps[1], PairOptions{}, kept).features().hough_spectrum, taken);
+    kept.hough_spectrum.pop_back();
+    EXPECT_EQ(PreparedMap(fleet_.maps[1], PairOptions{}, kept).features().hough_spectrum,
+              original.features().hough_spectrum);
+  }
   // Indexed cells: a cell whose index is beyond the field's table of distances is refused.
   const PreparedMap prepared(fleet_.maps[1], PairOptions{});
   prepared.Target(1);
