@@ -276,13 +276,13 @@ std::optional<PairOutcome> ParsePairOutcome(const std::string& payload) {
   return outcome;
 }
 
-std::string PreparationPayload(const PreparedMap& map) {
+std::string PreparationPayload(const PreparedMap& prepared) {
   std::string bytes;
   AppendRaw(bytes, kPreparationPayloadTag);
-  const std::vector<double>& spectrum = map.features().hough_spectrum;
+  const std::vector<double>& spectrum = prepared.features().hough_spectrum;
   AppendRaw(bytes, static_cast<std::uint32_t>(spectrum.size()));
   AppendRawArray(bytes, spectrum.data(), spectrum.size());
-  const std::map<int, const AlignmentTarget*> targets = map.Targets();
+  const std::map<int, const AlignmentTarget*> targets = prepared.Targets();
   AppendRaw(bytes, static_cast<std::uint32_t>(targets.size()));
   for (const auto& [scale, target] : targets) {
     AppendRaw(bytes, static_cast<std::int32_t>(scale));

@@ -49,7 +49,7 @@ std::optional<PairOutcome> ParsePairOutcome(const std::string& payload);
 // so far, by scale), and back. The values are their bytes, so the map prepared again from them
 // gives its pairs the same hypotheses bit for bit. ParsePreparation returns nullopt for bytes
 // that are not such a payload.
-std::string PreparationPayload(const PreparedMap& map);
+std::string PreparationPayload(const PreparedMap& prepared);
 std::optional<KeptPreparation> ParsePreparation(const std::string& payload);
 
 // Counts of one job's use of the cache.
