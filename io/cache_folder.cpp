@@ -65,7 +65,7 @@ std::optional<std::string> ParseEntry(const std::string& bytes, const ContentDig
 
 constexpr std::size_t kKeyDigits = 2 * sizeof(ContentDigest);
 // Entries hold a pair's few hypotheses (~330 bytes) or a map's kept preparation (about a byte a
-// cell of its distance fields: 13.5 MB for scripts/large_site_benchmark.sh's 4000 x 4000 site,
+// cell of its distance fields: 13.5-17 MB for scripts/large_site_benchmark.sh's 4000 x 4000 site,
 // ~130 MB for a map of max_map_cells' default 10^8 cells): a file beyond this is no entry, and is
 // not read whole into memory.
 constexpr std::size_t kLargestEntryBytes = std::size_t(1) << 30;
