@@ -58,18 +58,27 @@ void AppendDistanceField(std::string& bytes, const WallDistanceField& field) {
   AppendRaw(bytes, static_cast<std::int32_t>(field.offset().y()));
   AppendRaw(bytes, static_cast<std::int32_t>(distances.rows));
   AppendRaw(bytes, static_cast<std::int32_t>(distances.cols));
-  // The distinct values by their bits (the table is searched for the same bits when read).
+  // One pass: the table of distinct values (by their bits, as they are read back) and each
+  // cell's index into it, given up for floats and flags once the table would overflow.
   std::vector<std::uint32_t> table;
+  std::string cells(static_cast<std::size_t>(distances.rows) * distances.cols, '\0');
+  std::size_t at = 0;
   for (int r = 0; r < distances.rows && table.size() <= kMaxTableValues; ++r) {
     const float* row = distances.ptr<float>(r);
+    const std::uint8_t* flat_row = flat.ptr<std::uint8_t>(r);
     std::uint32_t last = 0;
+    std::size_t last_index = 0;
     bool have_last = false;
-    for (int c = 0; c < distances.cols && table.size() <= kMaxTableValues; ++c) {
+    for (int c = 0; c < distances.cols; ++c) {
       std::uint32_t bits = 0;
       std::memcpy(&bits, &row[c], sizeof bits);
-      if (have_last && bits == last) continue;
-      last = bits, have_last = true;
-      if (std::find(table.begin(), table.end(), bits) == table.end()) table.push_back(bits);
+      if (!have_last || bits != last) {
+        last = bits, have_last = true;
+        last_index = std::find(table.begin(), table.end(), bits) - table.begin();
+        if (last_index == table.size()) table.push_back(bits);
+        if (table.size() > kMaxTableValues) break;
+      }
+      cells[at++] = static_cast<char>(last_index | (flat_row[c] != 0 ? kFlatBit : 0));
     }
   }
   if (table.size() > kMaxTableValues) {
@@ -85,25 +94,6 @@ void AppendDistanceField(std::string& bytes, const WallDistanceField& field) {
   AppendRaw(bytes, kIndexedCells);
   AppendRaw(bytes, static_cast<std::uint32_t>(table.size()));
   AppendRawArray(bytes, table.data(), table.size());
-  std::string cells(static_cast<std::size_t>(distances.rows) * distances.cols, '\0');
-  std::size_t at = 0;
-  for (int r = 0; r < distances.rows; ++r) {
-    const float* row = distances.ptr<float>(r);
-    const std::uint8_t* flat_row = flat.ptr<std::uint8_t>(r);
-    std::uint32_t last = 0;
-    std::uint8_t last_index = 0;
-    bool have_last = false;
-    for (int c = 0; c < distances.cols; ++c) {
-      std::uint32_t bits = 0;
-      std::memcpy(&bits, &row[c], sizeof bits);
-      if (!have_last || bits != last) {
-        last = bits, have_last = true;
-        last_index =
-            static_cast<std::uint8_t>(std::find(table.begin(), table.end(), bits) - table.begin());
-      }
-      cells[at++] = static_cast<char>(last_index | (flat_row[c] != 0 ? kFlatBit : 0));
-    }
-  }
   bytes += cells;
 }
 
@@ -350,26 +340,34 @@ ContentDigest PairCache::PairKey(const ContentDigest& options, const ContentDige
   return hash.Finish();
 }
 
-std::optional<PairOutcome> PairCache::FindPair(const ContentDigest& options, const ContentDigest& a,
-                                               const ContentDigest& b) {
-  const ContentDigest key = PairKey(options, a, b);
+template <typename Parse>
+auto PairCache::Find(const ContentDigest& key, const Parse& parse) -> decltype(parse("")) {
   const std::optional<std::string> payload = folder_.Read(key);
   if (!payload) return std::nullopt;
-  std::optional<PairOutcome> outcome = ParsePairOutcome(*payload);
-  if (!outcome) folder_.Discard(key);  // a sound entry of another layout: never trusted
-  return outcome;
+  auto parsed = parse(*payload);
+  if (!parsed) folder_.Discard(key);  // a sound entry of another layout: never trusted
+  return parsed;
 }
 
-void PairCache::StorePair(const ContentDigest& options, const ContentDigest& a,
-                          const ContentDigest& b, const PairOutcome& outcome) {
+void PairCache::Store(const ContentDigest& key, const std::string& payload) {
   try {
-    folder_.Write(PairKey(options, a, b), PairOutcomePayload(outcome));
+    folder_.Write(key, payload);
   } catch (const Error& e) {
     if (write_failures_++ == 0) {
       const std::lock_guard<std::mutex> lock(error_mutex_);
       first_write_error_ = e.what();
     }
   }
+}
+
+std::optional<PairOutcome> PairCache::FindPair(const ContentDigest& options, const ContentDigest& a,
+                                               const ContentDigest& b) {
+  return Find(PairKey(options, a, b), ParsePairOutcome);
+}
+
+void PairCache::StorePair(const ContentDigest& options, const ContentDigest& a,
+                          const ContentDigest& b, const PairOutcome& outcome) {
+  Store(PairKey(options, a, b), PairOutcomePayload(outcome));
 }
 
 ContentDigest PairCache::PreparationKey(const ContentDigest& options, const ContentDigest& map) {
@@ -382,28 +380,14 @@ ContentDigest PairCache::PreparationKey(const ContentDigest& options, const Cont
 
 std::optional<KeptPreparation> PairCache::FindPreparation(const ContentDigest& options,
                                                           const ContentDigest& map) {
-  const ContentDigest key = PreparationKey(options, map);
-  const std::optional<std::string> payload = folder_.Read(key);
-  if (!payload) return std::nullopt;
-  std::optional<KeptPreparation> kept = ParsePreparation(*payload);
-  if (!kept) {
-    folder_.Discard(key);  // a sound entry of another layout: never trusted
-    return std::nullopt;
-  }
-  ++preparations_kept_;
+  std::optional<KeptPreparation> kept = Find(PreparationKey(options, map), ParsePreparation);
+  if (kept) ++preparations_kept_;
   return kept;
 }
 
 void PairCache::StorePreparation(const ContentDigest& options, const ContentDigest& map,
                                  const PreparedMap& prepared) {
-  try {
-    folder_.Write(PreparationKey(options, map), PreparationPayload(prepared));
-  } catch (const Error& e) {
-    if (write_failures_++ == 0) {
-      const std::lock_guard<std::mutex> lock(error_mutex_);
-      first_write_error_ = e.what();
-    }
-  }
+  Store(PreparationKey(options, map), PreparationPayload(prepared));
 }
 
 void PairCache::Close() {

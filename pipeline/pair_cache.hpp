@@ -102,6 +102,12 @@ class PairCache {
   static ContentDigest PairKey(const ContentDigest& options, const ContentDigest& a,
                                const ContentDigest& b);
   static ContentDigest PreparationKey(const ContentDigest& options, const ContentDigest& map);
+  // The entry under `key` parsed by `parse` (nullopt for bytes it refuses: then the entry is
+  // discarded), or nullopt.
+  template <typename Parse>
+  auto Find(const ContentDigest& key, const Parse& parse) -> decltype(parse(""));
+  // Writes the entry; a failure is counted (stats().write_failures), not thrown.
+  void Store(const ContentDigest& key, const std::string& payload);
   std::string version_;
   CacheFolder folder_;
   bool closed_ = false;
