@@ -178,7 +178,7 @@ cv::Mat1b CellsToPixels(const OccupancyGrid& grid, const fs::path& path_for_erro
   return pixels;
 }
 
-std::string EncodeImage(const cv::Mat& image, const fs::path& path) {
+std::string EncodeImage(const cv::Mat& image, const fs::path& path, int threads) {
   const std::string extension = LowerExtension(path);
   const auto fail = [&path](const std::string& what) { throw Error(path.string() + ": " + what); };
   if (extension != ".png" && extension != ".pgm") {
@@ -193,7 +193,7 @@ std::string EncodeImage(const cv::Mat& image, const fs::path& path) {
   if (channels != 1 && channels != 3 && channels != 4) {
     fail("a PNG holds 1, 3 or 4 channels, got " + std::to_string(channels));
   }
-  return extension == ".pgm" ? EncodePgm(image) : EncodePng(image);
+  return extension == ".pgm" ? EncodePgm(image) : EncodePng(image, threads);
 }
 
 }  // namespace fleetmerge

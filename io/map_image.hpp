@@ -43,7 +43,8 @@ cv::Mat1b PixelsToCells(const MapImage& image, const MapMetadata& metadata);
 cv::Mat1b CellsToPixels(const OccupancyGrid& grid, const std::filesystem::path& path_for_errors);
 
 // Encodes an 8- or 16-bit image as PNG or binary PGM, chosen by `path`'s extension (.png: 1, 3
-// or 4 channels; .pgm: 1 channel). Throws fleetmerge::Error "<path>: ..." otherwise.
-std::string EncodeImage(const cv::Mat& image, const std::filesystem::path& path);
+// or 4 channels; .pgm: 1 channel). Throws fleetmerge::Error "<path>: ..." otherwise. A PNG is
+// encoded on `threads` threads (EncodePng).
+std::string EncodeImage(const cv::Mat& image, const std::filesystem::path& path, int threads = 1);
 
 }  // namespace fleetmerge

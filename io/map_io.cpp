@@ -43,9 +43,9 @@ void SaveMap(const OccupancyGrid& grid, const fs::path& yaml_path,
 }
 
 void SaveImage(const cv::Mat& image, const fs::path& path,
-               const std::vector<fs::path>& protected_inputs, AtomicWrite mode) {
+               const std::vector<fs::path>& protected_inputs, AtomicWrite mode, int threads) {
   CheckNotAnInput(path, protected_inputs);
-  WriteFileAtomically(path, EncodeImage(image, path), protected_inputs, mode);
+  WriteFileAtomically(path, EncodeImage(image, path, threads), protected_inputs, mode);
 }
 
 }  // namespace fleetmerge

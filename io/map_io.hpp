@@ -67,9 +67,10 @@ void SaveMap(const OccupancyGrid& grid, const std::filesystem::path& yaml_path,
              AtomicWrite mode = AtomicWrite::kDurable);
 
 // Writes an 8- or 16-bit image atomically, as PNG (.png: 1, 3 or 4 channels) or binary PGM
-// (.pgm: 1 channel), chosen by the extension. For previews and debugging output.
+// (.pgm: 1 channel), chosen by the extension, a PNG encoded on `threads` threads. For previews
+// and debugging output.
 void SaveImage(const cv::Mat& image, const std::filesystem::path& path,
                const std::vector<std::filesystem::path>& protected_inputs = {},
-               AtomicWrite mode = AtomicWrite::kDurable);
+               AtomicWrite mode = AtomicWrite::kDurable, int threads = 1);
 
 }  // namespace fleetmerge

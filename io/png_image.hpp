@@ -1,5 +1,6 @@
-// PNG pixels decoded and encoded with libspng (Debian's libspng0: zlib only; OpenCV's imgcodecs,
-// which did this before, loads ~110 shared libraries at every start-up).
+// PNG pixels decoded with libspng (Debian's libspng0: zlib only; OpenCV's imgcodecs, which did
+// this before, loads ~110 shared libraries at every start-up) and encoded with zlib in bands of
+// rows on threads (png_image.cpp says why).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -17,12 +18,15 @@ cv::Mat DecodePng(const std::string& bytes);
 
 // PNG of an 8- or 16-bit image with 1 (grey), 3 (BGR, OpenCV's order) or 4 (BGRA) channels,
 // written like cv::imwrite's default (zlib level 1, RLE strategy, "sub" filter: fast, and
-// maps compress well anyway).
-std::string EncodePng(const cv::Mat& image);
+// maps compress well anyway), on `threads` threads (<= 0: all cores; the bytes are the same for
+// any count).
+std::string EncodePng(const cv::Mat& image, int threads = 1);
 
 // Palette PNG (PLTE and tRNS chunks) of 8-bit `indices` into `palette_rgba` (R, G, B, A; 1 to
 // 256 colours): decoded, the RGBA image of the palette's colours. One byte a pixel to filter and
 // compress where RGBA takes four. Throws std::runtime_error for an index beyond the palette.
-std::string EncodeIndexedPng(const cv::Mat1b& indices, const std::vector<cv::Vec4b>& palette_rgba);
+// `threads` as for EncodePng.
+std::string EncodeIndexedPng(const cv::Mat1b& indices, const std::vector<cv::Vec4b>& palette_rgba,
+                             int threads = 1);
 
 }  // namespace fleetmerge

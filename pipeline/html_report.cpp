@@ -27,7 +27,7 @@ bool HasCells(const OccupancyGrid& grid) { return grid.width() > 0 && grid.heigh
 // keeps black -> the tint, white -> white), so one image serves every colour and hypothesis.
 // A palette PNG of these three colours: a quarter of the bytes of RGBA to compress (the
 // encoding was 10 % of an 8-robot merge's CPU), the same pixels decoded.
-std::string MapImagePng(const OccupancyGrid& grid) {
+std::string MapImagePng(const OccupancyGrid& grid, int threads) {
   enum : std::uint8_t { kUnknownPixel, kFreePixel, kOccupiedPixel };
   static const std::vector<cv::Vec4b> kPaletteRgba = {
       cv::Vec4b(0, 0, 0, 0), cv::Vec4b(235, 235, 235, 255), cv::Vec4b(0, 0, 0, 255)};
@@ -44,7 +44,7 @@ std::string MapImagePng(const OccupancyGrid& grid) {
       }
     }
   }
-  return EncodeIndexedPng(image, kPaletteRgba);
+  return EncodeIndexedPng(image, kPaletteRgba, threads);
 }
 
 // The box of the grid's known cells: columns [i0, i1) and rows [j0, j1) (rows from the bottom);
@@ -257,7 +257,8 @@ std::vector<std::string> WriteHtmlMapImages(const std::vector<const OccupancyGri
   // waits overlap.
   ParallelFor(maps.size(), threads, [&](std::size_t m) {
     if (!HasCells(*maps[m])) return;
-    WriteFileAtomically(dir / MapImageName(m), MapImagePng(*maps[m]), protect, mode);
+    // A site's map (16 M cells) is deflated in bands on the threads the smaller maps left.
+    WriteFileAtomically(dir / MapImageName(m), MapImagePng(*maps[m], threads), protect, mode);
   });
   return written;
 }

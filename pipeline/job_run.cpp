@@ -56,7 +56,7 @@ std::vector<std::string> WriteOutputs(const std::filesystem::path& dir, const Fl
       for (int m : component.maps) inputs.push_back({&result.maps[m], result.T_component_map[m]});
       preview = ColourPreview(inputs, *component.merged, threads);
     }
-    SaveImage(preview, dir / (stem + "_preview.png"), {}, kStaged);
+    SaveImage(preview, dir / (stem + "_preview.png"), {}, kStaged, threads);
     written.insert(written.end(), {files[c], stem + ".pgm", stem + "_preview.png"});
   }
   return files;

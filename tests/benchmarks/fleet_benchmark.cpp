@@ -15,6 +15,7 @@
 #include "cli/process_memory.hpp"
 #include "cli/process_threads.hpp"
 #include "io/map_io.hpp"
+#include "io/png_image.hpp"
 #include "job/job.hpp"
 #include "pipeline/composite.hpp"
 #include "pipeline/pair_cache.hpp"
@@ -113,6 +114,32 @@ void BM_CompositeAndPreview(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_CompositeAndPreview)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
+
+// PNG encoding (io/png_image.hpp) of a site-sized preview on 1 and 2 threads (the argument): the
+// eight maps' colour preview tiled to at least 4000 x 4000 pixels, RGB, as the preview of a site
+// job (scripts/large_site_benchmark.sh) is; the largest file `merge` encodes. Bytes/s of pixels.
+void BM_EncodePreviewPng(benchmark::State& state) {
+  static const cv::Mat3b site_preview = [] {
+    const std::vector<OccupancyGrid>& maps = EightMaps();
+    std::vector<CompositeInput> inputs;
+    for (std::size_t k = 0; k < maps.size(); ++k) {
+      inputs.push_back({&maps[k], Pose2(3.0 * k, -2.0 * k, 0.7 * k)});
+    }
+    PreviewColourer preview;
+    Composite(inputs, maps.front().geometry().resolution_m(), FusionMode::kLogOdds, 1, 0, &preview);
+    const cv::Mat3b& tile = preview.image();
+    cv::Mat3b tiled;
+    cv::repeat(tile, (4000 + tile.rows - 1) / tile.rows, (4000 + tile.cols - 1) / tile.cols, tiled);
+    std::fprintf(stderr, "preview: %d x %d pixels\n", tiled.cols, tiled.rows);
+    return tiled;
+  }();
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(EncodePng(site_preview, static_cast<int>(state.range(0))));
+  }
+  state.SetBytesProcessed(state.iterations() * site_preview.total() * site_preview.elemSize());
+  state.SetLabel(std::to_string(state.range(0)) + " thread(s)");
+}
+BENCHMARK(BM_EncodePreviewPng)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace fleetmerge

@@ -4,6 +4,7 @@
 // encode must decode (by OpenCV) to what we encoded.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <random>
@@ -210,6 +211,65 @@ TEST(ImageCodecsTest, IndexedPngDecodesToItsPaletteColoursInOpenCvAndOurs) {
   indices(3, 4) = 4;
   EXPECT_THROW(EncodeIndexedPng(indices, palette_rgba), std::runtime_error);
   EXPECT_THROW(EncodeIndexedPng(indices, {}), std::runtime_error);
+}
+
+// How many IDAT chunks a PNG has (PNG specification section 5.3: length, type, data, CRC).
+int IdatChunks(const std::string& png) {
+  int count = 0;
+  for (std::size_t at = 8; at + 12 <= png.size();) {
+    std::uint32_t length = 0;
+    for (int k = 0; k < 4; ++k) length = length << 8 | static_cast<std::uint8_t>(png[at + k]);
+    count += png.compare(at + 4, 4, "IDAT") == 0;
+    at += 12 + std::size_t{length};
+  }
+  return count;
+}
+
+// A map-like image: runs of equal pixels (what compresses) with random noise in every 7th row,
+// so that a band that lost its bytes or its place would show.
+cv::Mat MapLikeImage(int rows, int cols, int type, std::mt19937& rng) {
+  cv::Mat image(rows, cols, type);
+  cv::randu(image, 0, CV_MAT_DEPTH(type) == CV_16U ? 65536 : 256);
+  for (int r = 0; r < rows; ++r) {
+    if (r % 7 == 0) continue;
+    const int run = std::uniform_int_distribution<int>(1, 300)(rng);
+    for (int c = run; c < cols; ++c) {
+      std::memcpy(image.ptr(r, c), image.ptr(r, c - c % run), image.elemSize());
+    }
+  }
+  return image;
+}
+
+TEST(ImageCodecsTest, LargePngsAreDeflatedInBandsThatDecodeAsOneImageOnAnyThreadCount) {
+  std::mt19937 rng(23);
+  // Several 1 MiB bands each: 4000 x 700 RGB is 8.4 MB of scanlines, a preview's size class.
+  for (const int type : {CV_8UC3, CV_16UC1, CV_8UC1, CV_16UC4}) {
+    const cv::Mat image =
+        MapLikeImage(700, 4000 / static_cast<int>(CV_ELEM_SIZE(type)) * 3, type, rng);
+    const std::string one_thread = EncodePng(image, 1);
+    EXPECT_GE(IdatChunks(one_thread), 2) << "type " << type << ": expected several bands";
+    EXPECT_EQ(EncodePng(image, 2), one_thread) << "type " << type;
+    EXPECT_EQ(EncodePng(image, 0), one_thread) << "type " << type;
+    const cv::Mat back = cv::imdecode(std::vector<uchar>(one_thread.begin(), one_thread.end()),
+                                      cv::IMREAD_UNCHANGED);
+    ExpectSameSamples(back, image, "banded PNG of type " + std::to_string(type) + " in OpenCV");
+  }
+  const std::vector<cv::Vec4b> palette_rgba = {cv::Vec4b(0, 0, 0, 0), cv::Vec4b(235, 235, 235, 255),
+                                               cv::Vec4b(0, 0, 0, 255)};
+  cv::Mat1b indices = MapLikeImage(1500, 2100, CV_8UC1, rng);
+  for (auto& v : indices) v %= 3;
+  const std::string png = EncodeIndexedPng(indices, palette_rgba, 2);
+  EXPECT_GE(IdatChunks(png), 3);
+  EXPECT_EQ(EncodeIndexedPng(indices, palette_rgba, 1), png);
+  cv::Mat4b want_rgba(indices.size());
+  for (int r = 0; r < indices.rows; ++r) {
+    for (int c = 0; c < indices.cols; ++c) want_rgba(r, c) = palette_rgba[indices(r, c)];
+  }
+  ExpectSameSamples(DecodePng(png), want_rgba, "banded palette PNG in ours");
+  cv::Mat want_bgra;
+  cv::cvtColor(want_rgba, want_bgra, cv::COLOR_RGBA2BGRA);
+  ExpectSameSamples(cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_UNCHANGED),
+                    want_bgra, "banded palette PNG in OpenCV");
 }
 
 TEST(ImageCodecsTest, PngErrorsCarryLibspngsReason) {
