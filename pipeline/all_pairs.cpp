@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -12,6 +13,7 @@
 #include "core/parallel.hpp"
 #include "core/wall_agreement.hpp"
 #include "pipeline/pair_cache.hpp"
+#include "pipeline/pair_order.hpp"
 #include "pipeline/prepared_map.hpp"
 
 namespace fleetmerge {
@@ -131,23 +133,40 @@ std::vector<PairOutcome> ComputeAllPairs(const std::vector<OccupancyGrid>& maps,
     if (walls) (*walls)[m].emplace(prepared[m]->TakeWalls());  // its own slot: no other thread's
     prepared[m].reset();
   };
+  // Threads take the pairs whose maps no other thread is preparing first (pipeline/pair_order.hpp).
+  std::vector<std::pair<int, int>> missing_pairs;
+  for (const std::size_t k : missing) missing_pairs.push_back(jobs[k]);
+  PairOrder order(std::move(missing_pairs), maps.size());
+  // A pair that throws is reported as it would be in row order: the first such pair's error.
+  std::vector<std::exception_ptr> errors(missing.size());
   std::atomic<int> done{cached_count};
   std::mutex progress_mutex;
-  ParallelFor(missing.size(), threads, [&](std::size_t i) {
+  ParallelFor(missing.size(), threads, [&](std::size_t) {
+    const std::size_t i = order.Take();
     const std::size_t k = missing[i];
     const auto [a, b] = jobs[k];
-    prepare(a);
-    prepare(b);
-    outcomes[k] = ComputePair(prepared, a, b, options_of(k));
-    release(a);
-    release(b);
-    if (cache) cache->StorePair(options_digest_of(k), digests[a], digests[b], outcomes[k]);
+    try {
+      prepare(a);
+      order.Prepared(a);
+      prepare(b);
+      order.Prepared(b);
+      outcomes[k] = ComputePair(prepared, a, b, options_of(k));
+      release(a);
+      release(b);
+      if (cache) cache->StorePair(options_digest_of(k), digests[a], digests[b], outcomes[k]);
+    } catch (...) {
+      errors[i] = std::current_exception();
+      return;
+    }
     const int finished = ++done;
     if (progress) {
       const std::lock_guard<std::mutex> lock(progress_mutex);
       progress("pairs", finished, total);
     }
   });
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
   return outcomes;
 }
 
