@@ -61,10 +61,10 @@ cv::Mat DecodePng(const std::string& bytes) {
 
 namespace {
 
-// Encoding. libspng deflates an image as one stream on one thread; a 4000 x 4000 preview took
-// ~170 ms there, the longest step of writing a site's result set. So the scanlines are filtered
-// and deflated here in bands of whole rows on threads, as pigz does: each band is a raw deflate
-// stream that ends on a byte boundary (Z_SYNC_FLUSH; the last band Z_FINISH), so the bands
+// Encoding. libspng deflates an image as one stream on one thread, and a site's 4000 x 4000
+// preview is the longest step of writing its result set (docs/speed.md). So the scanlines are
+// filtered and deflated here in bands of whole rows on threads, as pigz does: each band is a raw
+// deflate stream that ends on a byte boundary (Z_SYNC_FLUSH; the last band Z_FINISH), so the bands
 // concatenate into one zlib stream (RFC 1950: a 2-byte header, the deflate data, the Adler-32 of
 // the uncompressed bytes, combined here from the bands' own). The settings are cv::imwrite's:
 // zlib level 1 with the RLE strategy (its matches reach back one byte only, so a band loses
@@ -153,7 +153,7 @@ DeflatedBand DeflateRows(const cv::Mat& pixels, bool sub_filter, int row_begin, 
 std::string Encode(const cv::Mat& pixels, std::uint8_t color_type, bool sub_filter,
                    const std::string& before_image, int threads) {
   CV_Assert(pixels.isContinuous());
-  if (pixels.empty()) throw std::runtime_error("PNG encoding: an image has at least 1 x 1 pixels");
+  if (pixels.empty()) throw std::runtime_error("PNG encoding: an empty image (a PNG has pixels)");
   // The image's size must fit the band arithmetic's uInt lengths and the PNG's own limits.
   const std::size_t row_bytes = 1 + pixels.elemSize() * static_cast<std::size_t>(pixels.cols);
   const int rows_per_band =

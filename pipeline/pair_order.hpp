@@ -1,9 +1,9 @@
 // The order in which ComputeAllPairs' threads take the pairs to compute (pipeline/all_pairs.hpp).
 // Each pair's outcome is its own, so the order changes no result, only how long threads wait:
 // a map is prepared by the first pair that needs it (pipeline/prepared_map.hpp), and a thread
-// whose pair needs a map another thread is preparing waits for it. A site's map takes 60-150 ms
-// to prepare (scripts/large_site_benchmark.sh) and is in every pair of a site job's first
-// round, so in row order every thread but one waited for it.
+// whose pair needs a map another thread is preparing waits for it. A site's map is the dearest
+// to prepare and is in every pair of a site job's first round, so in row order every thread but
+// one waited for it (docs/speed.md, "How the work is shared").
 #pragma once
 
 #include <cstddef>
