@@ -144,7 +144,10 @@ DeflatedBand DeflateRows(const cv::Mat& pixels, bool sub_filter, int row_begin, 
   if (result != (last ? Z_STREAM_END : Z_OK) || z.avail_in != 0 || z.avail_out == 0) {
     throw std::runtime_error("PNG encoding: zlib failed to deflate a band of rows");
   }
+  // Held until every band is done: only its bytes, not deflateBound's room (a preview's 40 bands
+  // would hold 40 MB of it).
   band.bytes.resize(band.bytes.size() - z.avail_out);
+  band.bytes.shrink_to_fit();
   return band;
 }
 
