@@ -11,10 +11,7 @@
 #include <vector>
 
 #include "core/parallel.hpp"
-
-// 16-bit samples are swapped from the host's order to the PNG's big-endian one.
-static_assert(__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__,
-              "png_image.cpp assumes a little-endian host");
+#include "io/big_endian.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -109,15 +106,11 @@ DeflatedBand DeflateRows(const cv::Mat& pixels, bool sub_filter, int row_begin, 
   std::string filtered(static_cast<std::size_t>(row_end - row_begin) * (1 + row_bytes), '\0');
   auto* out = reinterpret_cast<std::uint8_t*>(filtered.data());
   for (int j = row_begin; j < row_end; ++j) {
-    const std::uint8_t* row = pixels.ptr<std::uint8_t>(j);
     *out++ = sub_filter ? 1 : 0;
-    if (sample_bytes == 2) {  // host (little-endian) to the PNG's big-endian samples
-      for (std::size_t k = 0; k < row_bytes; k += 2) {
-        out[k] = row[k + 1];
-        out[k + 1] = row[k];
-      }
+    if (sample_bytes == 2) {
+      StoreBigEndian16(pixels.ptr<std::uint16_t>(j), row_bytes / 2, out);
     } else {
-      std::copy(row, row + row_bytes, out);
+      std::copy_n(pixels.ptr<std::uint8_t>(j), row_bytes, out);
     }
     if (sub_filter) {  // from the right, so each byte still sees its raw left neighbour
       for (std::size_t k = row_bytes; k-- > pixel_bytes;) out[k] -= out[k - pixel_bytes];

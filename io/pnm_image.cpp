@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "io/big_endian.hpp"
+
 namespace fleetmerge {
 namespace {
 
@@ -180,11 +182,8 @@ std::string EncodePgm(const cv::Mat& image) {
       std::copy_n(image.ptr<char>(r), row_bytes, dst);
       continue;
     }
-    const std::uint16_t* src = image.ptr<std::uint16_t>(r);
-    for (int c = 0; c < image.cols; ++c) {
-      dst[2 * c] = static_cast<char>(src[c] >> 8);
-      dst[2 * c + 1] = static_cast<char>(src[c] & 0xff);
-    }
+    StoreBigEndian16(image.ptr<std::uint16_t>(r), static_cast<std::size_t>(image.cols),
+                     reinterpret_cast<std::uint8_t*>(dst));
   }
   return out;
 }
