@@ -60,6 +60,11 @@ ceres::LossFunction* MakeLoss(const PoseGraphOptions& options) {
 
 }  // namespace
 
+bool UseDenseSchur(int free_nodes, std::size_t edges) {
+  const std::size_t n = static_cast<std::size_t>(std::max(free_nodes, 0));
+  return n >= 2 && 10 * edges >= n * (n - 1) / 2;
+}
+
 std::vector<std::optional<Pose2>> SpanningTreePoses(int node_count,
                                                     const std::vector<PoseGraphEdge>& edges,
                                                     int reference) {
@@ -135,11 +140,25 @@ std::vector<std::optional<Pose2>> OptimizePoseGraph(
   }
   if (gauge) {
     ceres::Solver::Options solver;
-    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-    // A fleet's graph is small (3 parameters per map): Eigen's simplicial Cholesky solves it
-    // faster than CHOLMOD's supernodal one with its BLAS calls (docs/speed.md, the fleet graph).
-    if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
-      solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+    int free_nodes = 0;
+    for (std::size_t n = 0; n < initial.size(); ++n) {
+      free_nodes += problem.HasParameterBlock(x[n].data()) && !constant[n];
+    }
+    const bool dense =
+        options.solver == PoseGraphSolver::kDenseSchur ||
+        (options.solver == PoseGraphSolver::kAutomatic &&
+         UseDenseSchur(free_nodes, static_cast<std::size_t>(problem.NumResidualBlocks())));
+    if (dense) {
+      // Ceres eliminates an independent set of nodes (a few, in a dense graph) and factorises
+      // the rest as one dense matrix with Eigen's blocked Cholesky.
+      solver.linear_solver_type = ceres::DENSE_SCHUR;
+    } else {
+      solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+      // A sparse graph: Eigen's simplicial Cholesky solves it faster than CHOLMOD's supernodal
+      // one with its BLAS calls (docs/speed.md, the fleet graph).
+      if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
+        solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
+      }
     }
     solver.max_num_iterations = 100;
     solver.logging_type = ceres::SILENT;

@@ -18,6 +18,15 @@ namespace fleetmerge {
 
 enum class RobustLoss { kNone, kHuber, kCauchy };
 
+// How each step's linear system (3 unknowns per map) is solved. Both are exact and give the same
+// poses (to ~1e-14 m); their speed depends on the graph's density
+// (tests/benchmarks/pose_graph_benchmark.cpp, docs/speed.md).
+enum class PoseGraphSolver {
+  kAutomatic,       // kDenseSchur for a dense graph (UseDenseSchur), else kSparseCholesky
+  kSparseCholesky,  // Ceres' SPARSE_NORMAL_CHOLESKY with Eigen's simplicial factorisation
+  kDenseSchur,      // Ceres' DENSE_SCHUR: the system made dense and factorised as one block
+};
+
 struct PoseGraphOptions {
   RobustLoss loss = RobustLoss::kCauchy;
   double loss_scale = 3.0;            // in sigmas of the whitened residual
@@ -26,6 +35,7 @@ struct PoseGraphOptions {
   // An edge whose residual after solving exceeds these is inconsistent with its cycles.
   double max_edge_yaw_error_rad = 1.0 * M_PI / 180.0;
   double max_edge_translation_error_m = 0.25;
+  PoseGraphSolver solver = PoseGraphSolver::kAutomatic;
 };
 
 struct PoseGraphEdge {
@@ -42,6 +52,13 @@ struct PoseGraphEdge {
   // error of 0.1 deg already moves it by a cell or more.
   Eigen::Vector2d anchor_b_m = Eigen::Vector2d::Zero();
 };
+
+// Whether kAutomatic solves a graph of `free_nodes` nodes that are not held constant and `edges`
+// edges (residual blocks) with kDenseSchur: when the edges are at least a tenth of all pairs of
+// those nodes. A fleet's maps overlap their neighbours, and from there on the sparse
+// factorisation fills in to nearly dense: the dense solve is faster, up to 2x at 60 % of the
+// pairs (ACES at 33 and 100 robots); at 2 % of the pairs the sparse one is (pose_graph_benchmark).
+bool UseDenseSchur(int free_nodes, std::size_t edges);
 
 // Poses T_ref_node of every node reached from `reference` by composing edges along a maximum-
 // omega spanning tree; nullopt for nodes not connected to it.

@@ -98,6 +98,85 @@ TEST(PoseGraph, AnEdgesOwnSigmasWeighIt) {
   EXPECT_NEAR(poses[1]->yaw_rad(), 0.01 / 101.0, 1e-8);
 }
 
+// The two linear solvers are exact: on a noisy graph with a wrong edge (the robust loss at work),
+// two fixed maps and a prior's own sigmas, they reach the same poses, far from the start.
+// kAutomatic takes the dense Schur solver on a dense graph and the sparse Cholesky one on a
+// sparse graph: its poses equal that solver's bit for bit.
+TEST(PoseGraph, BothLinearSolversGiveTheSamePoses) {
+  for (const int edge_percent : {100, 5}) {
+    std::mt19937 rng(3);
+    const int n = 40;
+    const auto truth = RandomPoses(n, rng);
+    std::vector<PoseGraphEdge> edges;
+    for (int a = 0; a < n; ++a) {
+      for (int b = a + 1; b < n; ++b) {
+        // Every pair, or a chain and every 20th pair (5 % of them).
+        if (edge_percent == 100 || b == a + 1 || (a * n + b) % 20 == 0) {
+          edges.push_back(
+              {a, b, Noisy(truth[a].inverse() * truth[b], 0.1, 0.5 * M_PI / 180, rng), 0.9});
+        }
+      }
+    }
+    edges.push_back({3, 9, truth[3].inverse() * truth[9] * Pose2(2.0, -1.0, 0.3), 0.9});  // wrong
+    edges.push_back({0, 7, truth[7], 1.0, 1.0, 0.2});  // a prior with its own sigmas
+    std::vector<bool> constant(n, false);
+    constant[0] = constant[5] = true;
+    std::vector<std::optional<Pose2>> anchors(n);
+    anchors[0] = truth[0];
+    anchors[5] = truth[5];
+    const auto initial = SpanningTreePoses(n, edges, anchors);
+    EXPECT_EQ(UseDenseSchur(n - 2, edges.size()), edge_percent == 100);
+
+    PoseGraphOptions options;
+    options.solver = PoseGraphSolver::kSparseCholesky;
+    const auto sparse = OptimizePoseGraph(initial, edges, constant, options);
+    options.solver = PoseGraphSolver::kDenseSchur;
+    const auto dense = OptimizePoseGraph(initial, edges, constant, options);
+    options.solver = PoseGraphSolver::kAutomatic;
+    const auto automatic = OptimizePoseGraph(initial, edges, constant, options);
+    const auto& chosen = edge_percent == 100 ? dense : sparse;
+    double moved_m = 0.0;
+    for (int m = 0; m < n; ++m) {
+      ASSERT_TRUE(sparse[m] && dense[m] && automatic[m]);
+      EXPECT_NEAR(sparse[m]->x_m(), dense[m]->x_m(), 1e-9) << "map " << m;
+      EXPECT_NEAR(sparse[m]->y_m(), dense[m]->y_m(), 1e-9) << "map " << m;
+      EXPECT_NEAR(sparse[m]->yaw_rad(), dense[m]->yaw_rad(), 1e-11) << "map " << m;
+      EXPECT_EQ(automatic[m]->x_m(), chosen[m]->x_m()) << "map " << m;
+      EXPECT_EQ(automatic[m]->y_m(), chosen[m]->y_m()) << "map " << m;
+      EXPECT_EQ(automatic[m]->yaw_rad(), chosen[m]->yaw_rad()) << "map " << m;
+      moved_m = std::max(moved_m, (dense[m]->translation_m() - initial[m]->translation_m()).norm());
+    }
+    EXPECT_GT(moved_m, 0.05) << "the solve must move the maps for the comparison to mean anything";
+    EXPECT_LT(RelativeError(dense, truth), RelativeError(initial, truth));
+  }
+}
+
+// A star around the held reference (robots that each overlap only the site map): every free node
+// is in the independent set that the Schur solver eliminates, none is left to factorise. It
+// solves it as the sparse solver does: map 1 between its two measurements (by symmetry, to the
+// solve's tolerance), map 2 on its one.
+TEST(PoseGraph, TheDenseSchurSolverSolvesAStarAroundTheReference) {
+  const std::vector<PoseGraphEdge> edges = {{0, 1, Pose2(5.0, 0.0, 0.1), 1.0},
+                                            {0, 1, Pose2(5.2, 0.0, 0.1), 1.0},
+                                            {0, 2, Pose2(0.0, 3.0, -0.2), 1.0}};
+  const std::vector<std::optional<Pose2>> initial = {Pose2(), Pose2(4.0, 1.0, 0.0),
+                                                     Pose2(1.0, 2.0, 0.0)};
+  PoseGraphOptions options;
+  options.solver = PoseGraphSolver::kDenseSchur;
+  const auto dense = OptimizePoseGraph(initial, edges, 0, options);
+  options.solver = PoseGraphSolver::kSparseCholesky;
+  const auto sparse = OptimizePoseGraph(initial, edges, 0, options);
+  EXPECT_NEAR(dense[1]->x_m(), 5.1, 1e-3);
+  EXPECT_NEAR(dense[1]->yaw_rad(), 0.1, 1e-6);
+  EXPECT_NEAR(dense[2]->y_m(), 3.0, 1e-6);
+  EXPECT_NEAR(dense[2]->yaw_rad(), -0.2, 1e-9);
+  for (const int m : {1, 2}) {
+    EXPECT_NEAR(dense[m]->x_m(), sparse[m]->x_m(), 1e-9);
+    EXPECT_NEAR(dense[m]->y_m(), sparse[m]->y_m(), 1e-9);
+    EXPECT_NEAR(dense[m]->yaw_rad(), sparse[m]->yaw_rad(), 1e-11);
+  }
+}
+
 TEST(PoseGraph, SpanningTreeLeavesUnconnectedNodesWithoutPose) {
   const std::vector<PoseGraphEdge> edges = {{0, 1, Pose2(1, 0, 0), 0.9}};
   const auto poses = SpanningTreePoses(3, edges, 0);
