@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <optional>
 #include <random>
 
 namespace fleetmerge {
@@ -157,6 +159,70 @@ TEST(AcceptanceIndex, MatchesBruteForceForRandomPosesIncludingPartialOverlaps) {
     }
   }
   EXPECT_GT(compared, 10000);  // many poses overlap: the test compares real counts
+}
+
+}  // namespace
+}  // namespace fleetmerge
+
+namespace fleetmerge {
+namespace {
+
+// OverlapCentre against its definition read literally (std::floor of each visited centre, the
+// cell's state through StateOrUnknown): random maps at random poses, and poses that put b's cell
+// centres exactly on a's cell borders and just outside a (x in (-1, 0), where the floor is -1
+// but the int cast 0), at strides 1 and 8 (the pose graph's anchors).
+TEST(OverlapCentre, MatchesItsDefinitionAlsoOnCellBordersAndJustOutsideTheGrid) {
+  std::mt19937 rng(9);
+  const auto random_grid = [&](int w, int h) {
+    OccupancyGrid g(GridGeometry(0.05, {w, h}));
+    for (int j = 0; j < h; ++j) {
+      for (int i = 0; i < w; ++i) g.set({i, j}, static_cast<CellState>(rng() % 3));
+    }
+    return g;
+  };
+  const OccupancyGrid a = random_grid(41, 29), b = random_grid(33, 37);
+  const auto oracle = [&](const Pose2& T, int stride) -> std::optional<Eigen::Vector2d> {
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    int count = 0;
+    for (int j = 0; j < b.height(); j += stride) {
+      for (int i = 0; i < b.width(); i += stride) {
+        if (b.StateOrUnknown({i, j}) == CellState::kUnknown) continue;
+        const Eigen::Vector2d p = T * Eigen::Vector2d(i + 0.5, j + 0.5);
+        const Eigen::Array2i in_a(static_cast<int>(std::floor(p.x())),
+                                  static_cast<int>(std::floor(p.y())));
+        if (a.StateOrUnknown(in_a) == CellState::kUnknown) continue;
+        sum += Eigen::Vector2d(i + 0.5, j + 0.5);
+        ++count;
+      }
+    }
+    if (count == 0) return std::nullopt;
+    return sum / count;
+  };
+  std::vector<Pose2> poses;
+  std::uniform_real_distribution<double> t(-30.0, 40.0), yaw(-M_PI, M_PI);
+  for (int k = 0; k < 30; ++k) poses.emplace_back(t(rng), t(rng), yaw(rng));
+  // Centres i + 0.5 moved by a whole number plus a half: every one on a cell corner of a, the
+  // first column or row on a's left or bottom border, and the last ones on its right or top one.
+  for (const double x : {-0.5, 7.5, 8.5, -33.5 + 41.0}) {
+    for (const double y : {-0.5, 4.5, -37.5 + 29.0}) poses.emplace_back(x, y, 0.0);
+  }
+  // A quarter of a cell short of a's left and bottom borders: b's first column and row land at
+  // -0.25, whose floor is outside a.
+  poses.emplace_back(-0.75, -0.75, 0.0);
+  poses.emplace_back(-0.75 + 33.0, 2.0, M_PI);  // turned a half: the last column at -0.25
+  int overlapping = 0;
+  for (const Pose2& T : poses) {
+    for (const int stride : {1, 8}) {
+      const auto want = oracle(T, stride);
+      const auto got = OverlapCentre(a, b, T, stride);
+      ASSERT_EQ(got.has_value(), want.has_value()) << T.x_m() << " " << T.y_m();
+      if (!want) continue;
+      ++overlapping;
+      EXPECT_EQ(got->x(), want->x()) << T.x_m() << " " << T.y_m() << " " << T.yaw_rad();
+      EXPECT_EQ(got->y(), want->y()) << T.x_m() << " " << T.y_m() << " " << T.yaw_rad();
+    }
+  }
+  EXPECT_GT(overlapping, 30);
 }
 
 }  // namespace

@@ -106,5 +106,39 @@ TEST(WallAgreement, ShiftedCountsMatchTheDefinitionAtEachShiftedPose) {
   EXPECT_GT(judged, 1000);  // the poses put walls on a's known cells
 }
 
+// b's wall centres landing exactly on a's cell borders, on its last column and row, and a quarter
+// of a cell outside its left and bottom borders (floor -1, int cast 0): the counts of every form
+// are the definition's.
+TEST(WallAgreement, CellBordersAndTheGridsEdgesCountAsTheDefinition) {
+  std::mt19937 rng(13);
+  const auto random_grid = [&](int w, int h) {
+    OccupancyGrid g(GridGeometry(0.05, {w, h}));
+    for (int j = 0; j < h; ++j) {
+      for (int i = 0; i < w; ++i) g.set({i, j}, static_cast<CellState>(rng() % 3));
+    }
+    return g;
+  };
+  const OccupancyGrid a = random_grid(41, 29), b = random_grid(33, 37);
+  const MapWalls walls_a(a);
+  const std::vector<Eigen::Vector2f> b_centres = OccupiedCellCenters(b);
+  std::vector<Pose2> poses;
+  for (const double x : {-0.5, 7.5, -33.5 + 41.0}) {
+    for (const double y : {-0.5, 4.5, -37.5 + 29.0}) poses.emplace_back(x, y, 0.0);
+  }
+  poses.emplace_back(-0.75, -0.75, 0.0);
+  poses.emplace_back(-0.75 + 33.0, 2.0, M_PI);
+  poses.emplace_back(3.0, -0.75 + 33.0, -M_PI / 2);
+  long on_known = 0;
+  for (const Pose2& T : poses) {
+    const WallCount want = OracleWallCount(a, b, T);
+    const WallCount got = CountWalls(a, walls_a.near_walls, b_centres, T);
+    EXPECT_EQ(got.on_known, want.on_known) << T.x_m() << " " << T.y_m() << " " << T.yaw_rad();
+    EXPECT_EQ(got.near_wall, want.near_wall) << T.x_m() << " " << T.y_m() << " " << T.yaw_rad();
+    EXPECT_EQ(WallAgreement(a, b, T), want.share());
+    on_known += want.on_known;
+  }
+  EXPECT_GT(on_known, 500);
+}
+
 }  // namespace
 }  // namespace fleetmerge
