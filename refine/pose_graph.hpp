@@ -56,8 +56,9 @@ struct PoseGraphEdge {
 // Whether kAutomatic solves a graph of `free_nodes` nodes that are not held constant and `edges`
 // edges (residual blocks) with kDenseSchur: when the edges are at least a tenth of all pairs of
 // those nodes. A fleet's maps overlap their neighbours, and from there on the sparse
-// factorisation fills in to nearly dense: the dense solve is faster, up to 2x at 60 % of the
-// pairs (ACES at 33 and 100 robots); at 2 % of the pairs the sparse one is (pose_graph_benchmark).
+// factorisation fills in to nearly dense: the dense solve is faster, 1.3-1.7x at 60 % of the
+// pairs (ACES at 33 and 100 robots) for 100-200 maps; at 2 % the sparse one is
+// (pose_graph_benchmark, docs/speed.md).
 bool UseDenseSchur(int free_nodes, std::size_t edges);
 
 // Poses T_ref_node of every node reached from `reference` by composing edges along a maximum-

@@ -1,10 +1,11 @@
 // The fleet's pose graph solved with each linear solver (refine/pose_graph.hpp, PoseGraphSolver)
 // on seeded synthetic fleets: N maps spread over a building, an edge between two maps where they
 // are among the given share of closest pairs (maps overlap their neighbours), each measured with
-// a pair's noise (0.05 m, 0.3 deg). The ACES fleets of scripts/cache_rerun_benchmark.sh have 10 %
-// (8 robots) to 63 % (100 robots) of their pairs as edges. Run:
+// a pair's noise (0.05 m, 0.3 deg). The 33- and 100-robot ACES jobs of
+// scripts/cache_rerun_benchmark.sh have 64 % and 63 % of their pairs as edges. Run (both solvers
+// interleaved; docs/speed.md):
 //   ./build/tests/benchmarks/pose_graph_benchmark --benchmark_repetitions=5
-//       --benchmark_report_aggregates_only=true   (one command line)
+//       --benchmark_enable_random_interleaving=true --benchmark_report_aggregates_only=true
 // Arguments: maps, edges as a percentage of all pairs, solver (0 automatic, 1 sparse Cholesky,
 // 2 dense Schur).
 #include <benchmark/benchmark.h>
