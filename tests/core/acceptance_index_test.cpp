@@ -6,6 +6,8 @@
 #include <optional>
 #include <random>
 
+#include "tests/support/random_grid.hpp"
+
 namespace fleetmerge {
 namespace {
 
@@ -161,26 +163,14 @@ TEST(AcceptanceIndex, MatchesBruteForceForRandomPosesIncludingPartialOverlaps) {
   EXPECT_GT(compared, 10000);  // many poses overlap: the test compares real counts
 }
 
-}  // namespace
-}  // namespace fleetmerge
-
-namespace fleetmerge {
-namespace {
-
 // OverlapCentre against its definition read literally (std::floor of each visited centre, the
 // cell's state through StateOrUnknown): random maps at random poses, and poses that put b's cell
 // centres exactly on a's cell borders and just outside a (x in (-1, 0), where the floor is -1
 // but the int cast 0), at strides 1 and 8 (the pose graph's anchors).
 TEST(OverlapCentre, MatchesItsDefinitionAlsoOnCellBordersAndJustOutsideTheGrid) {
   std::mt19937 rng(9);
-  const auto random_grid = [&](int w, int h) {
-    OccupancyGrid g(GridGeometry(0.05, {w, h}));
-    for (int j = 0; j < h; ++j) {
-      for (int i = 0; i < w; ++i) g.set({i, j}, static_cast<CellState>(rng() % 3));
-    }
-    return g;
-  };
-  const OccupancyGrid a = random_grid(41, 29), b = random_grid(33, 37);
+  const OccupancyGrid a = testing::RandomGrid(41, 29, rng);
+  const OccupancyGrid b = testing::RandomGrid(33, 37, rng);
   const auto oracle = [&](const Pose2& T, int stride) -> std::optional<Eigen::Vector2d> {
     Eigen::Vector2d sum = Eigen::Vector2d::Zero();
     int count = 0;

@@ -14,6 +14,7 @@
 #include "core/hypothesis_generator.hpp"  // CellPoseFromMapPose
 #include "core/point_sampling.hpp"
 #include "tests/support/office_pair.hpp"
+#include "tests/support/random_grid.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -111,14 +112,8 @@ TEST(WallAgreement, ShiftedCountsMatchTheDefinitionAtEachShiftedPose) {
 // are the definition's.
 TEST(WallAgreement, CellBordersAndTheGridsEdgesCountAsTheDefinition) {
   std::mt19937 rng(13);
-  const auto random_grid = [&](int w, int h) {
-    OccupancyGrid g(GridGeometry(0.05, {w, h}));
-    for (int j = 0; j < h; ++j) {
-      for (int i = 0; i < w; ++i) g.set({i, j}, static_cast<CellState>(rng() % 3));
-    }
-    return g;
-  };
-  const OccupancyGrid a = random_grid(41, 29), b = random_grid(33, 37);
+  const OccupancyGrid a = testing::RandomGrid(41, 29, rng);
+  const OccupancyGrid b = testing::RandomGrid(33, 37, rng);
   const MapWalls walls_a(a);
   const std::vector<Eigen::Vector2f> b_centres = OccupiedCellCenters(b);
   std::vector<Pose2> poses;
