@@ -154,8 +154,8 @@ std::vector<std::optional<Pose2>> OptimizePoseGraph(
       solver.linear_solver_type = ceres::DENSE_SCHUR;
     } else {
       solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-      // A sparse graph: Eigen's simplicial Cholesky solves it faster than CHOLMOD's supernodal
-      // one with its BLAS calls (docs/speed.md, the fleet graph).
+      // A sparse graph: Eigen's simplicial factorisation, no BLAS calls to pay for on 3
+      // parameters a map.
       if (ceres::IsSparseLinearAlgebraLibraryTypeAvailable(ceres::EIGEN_SPARSE)) {
         solver.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
       }
