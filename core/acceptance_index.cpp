@@ -146,7 +146,7 @@ std::optional<Eigen::Vector2d> OverlapCentre(const OccupancyGrid& a, const Occup
   // of CPU on them at 33 robots); Pose2's arithmetic, so the same cells.
   const Eigen::Matrix2d R = T_ga_gb.rotation();
   const Eigen::Vector2d& t = T_ga_gb.translation_m();
-  const double width = a.width(), height = a.height();
+  const CellOfPoint cell_in_a(a);
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   std::int64_t count = 0;
   for (int j = 0; j < b.height(); j += stride) {
@@ -154,14 +154,8 @@ std::optional<Eigen::Vector2d> OverlapCentre(const OccupancyGrid& a, const Occup
     for (int i = 0; i < b.width(); i += stride) {
       if (b_row[i] == unknown) continue;
       const Eigen::Vector2d centre(i + 0.5, j + 0.5);
-      const Eigen::Vector2d in_a = t + R * centre;
-      // The cell (floor(x), floor(y)) when it is a's, without std::floor (as CountWallsOnWalls,
-      // core/wall_agreement.cpp).
-      if (!(in_a.x() >= 0.0 && in_a.y() >= 0.0 && in_a.x() < width && in_a.y() < height)) {
-        continue;
-      }
-      const int ia = static_cast<int>(in_a.x());
-      const int ja = static_cast<int>(in_a.y());
+      int ia = 0, ja = 0;
+      if (!cell_in_a(t + R * centre, &ia, &ja)) continue;
       if (a.cells().ptr<std::uint8_t>(ja)[ia] == unknown) continue;
       sum += centre;
       ++count;

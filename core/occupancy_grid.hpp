@@ -55,4 +55,24 @@ class OccupancyGrid {
   cv::Mat1b cells_;
 };
 
+// The cell (floor(x), floor(y)) of a point in a grid's cell units, when it is one of the grid's,
+// found without std::floor: x86-64's baseline, which Debian's packages target, has no rounding
+// instruction and emulates floor in about a dozen instructions a coordinate. A coordinate is
+// outside [0, size) exactly when its floor is, and inside it the int cast is the floor: the same
+// cells. Made once per loop (the lookups of wall counts and overlap centres).
+class CellOfPoint {
+ public:
+  explicit CellOfPoint(const OccupancyGrid& grid) : width_(grid.width()), height_(grid.height()) {}
+  // False when p is outside the grid (or not a number).
+  bool operator()(const Eigen::Vector2d& p, int* i, int* j) const {
+    if (!(p.x() >= 0.0 && p.y() >= 0.0 && p.x() < width_ && p.y() < height_)) return false;
+    *i = static_cast<int>(p.x());
+    *j = static_cast<int>(p.y());
+    return true;
+  }
+
+ private:
+  double width_, height_;
+};
+
 }  // namespace fleetmerge

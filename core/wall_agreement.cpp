@@ -29,18 +29,13 @@ std::array<WallCount, K> CountWallsOnWalls(const OccupancyGrid& a, const cv::Mat
                                            const std::array<Eigen::Vector2d, K>& t,
                                            const ForEachWall& for_each_wall) {
   const auto unknown = static_cast<std::uint8_t>(CellState::kUnknown);
-  const double width = a.width(), height = a.height();
+  const CellOfPoint cell_in_a(a);
   std::array<WallCount, K> count{};
   for_each_wall([&](const Eigen::Vector2d& p_b) {
     const Eigen::Vector2d R_p_b = R * p_b;
     for (std::size_t k = 0; k < K; ++k) {
-      const Eigen::Vector2d p = t[k] + R_p_b;
-      // The cell (floor(p.x), floor(p.y)) when it is a's: a coordinate is outside [0, size)
-      // exactly when its floor is, and inside it the int cast is the floor (x86-64's baseline
-      // has no rounding instruction: std::floor took a dozen instructions a coordinate).
-      if (!(p.x() >= 0.0 && p.y() >= 0.0 && p.x() < width && p.y() < height)) continue;
-      const int ia = static_cast<int>(p.x());
-      const int ja = static_cast<int>(p.y());
+      int ia = 0, ja = 0;
+      if (!cell_in_a(t[k] + R_p_b, &ia, &ja)) continue;
       if (a.cells()(ja, ia) == unknown) continue;
       ++count[k].on_known;
       count[k].near_wall += near_wall(ja, ia) != 0;
