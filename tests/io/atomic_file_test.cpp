@@ -27,9 +27,7 @@ std::string ErrorOf(const fs::path& path, const std::string& bytes,
   return "";
 }
 
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using ft::Contains;
 
 TEST(AtomicFileTest, WritesExactBytesAndLeavesNoTemporaryFile) {
   const fs::path dir = ft::MakeTempDir("atomic_write");

@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "core/error.hpp"
+#include "tests/io/io_test_util.hpp"
 #include "tests/support/error_of.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/shared_data.hpp"
@@ -27,9 +28,7 @@ namespace ft = fleetmerge::testing;
 
 using fleetmerge::testing::ErrorOf;
 
-bool Contains(const std::string& text, const std::string& part) {
-  return text.find(part) != std::string::npos;
-}
+using ft::Contains;
 
 ContentDigest Key(const std::string& name) { return ContentHashOf(name); }
 
