@@ -56,10 +56,10 @@ out_all = os.path.join(out, f"robots{robots}_out")
 cache = os.path.join(out, "cache")
 
 def merge(job_file, cache_dir=None):
+    global last_cpu_s  # the run's CPU time (user + system), s
     args = [fleetmerge, "merge", "--quiet", "--force", job_file]
     if cache_dir:
         args += ["--cache", cache_dir]
-    global last_cpu_s
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.monotonic()
     run = subprocess.run(args, capture_output=True, text=True)
@@ -114,9 +114,9 @@ print(f"median of {repetitions}: cold {robots} robots {cold_s:.2f} s, "
       f"warm with robot {robots} new {warm_s:.2f} s, ratio {100 * warm_s / cold_s:.1f} %; "
       f"again with no map new {again_s:.2f} s, ratio {100 * again_s / cold_s:.1f} %")
 # The warm run split in two: its pair stage (the new pairs, and the kept preparations of the maps
-# they share with the new one read back), which grows with the fleet as the cold run's pair stage
-# does only with N rather than N^2 / 2; and the rest of the process (loading, refine, composite,
-# outputs, start-up), which every run pays whatever the cache holds.
+# they share with the new one read back), which grows as N with the fleet where the cold run's
+# grows as N^2 / 2; and the rest of the process (loading, refine, composite, outputs, start-up),
+# which every run pays whatever the cache holds.
 print(f"median of {repetitions}: the warm run's pair stage took "
       f"{100 * statistics.median(warm_pairs_share):.1f} % of the cold run, the rest of the warm "
       f"run {100 * statistics.median(warm_rest_share):.1f} %; its CPU time (user + system) per "
