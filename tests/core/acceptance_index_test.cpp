@@ -37,10 +37,7 @@ TEST(AcceptanceIndex, HandCountedAgreementAndDisagreement) {
 
 TEST(AcceptanceIndex, IsOneForAMapWithItself) {
   std::mt19937 rng(5);
-  OccupancyGrid m(GridGeometry(0.05, {37, 23}));
-  for (int j = 0; j < 23; ++j) {
-    for (int i = 0; i < 37; ++i) m.set({i, j}, static_cast<CellState>(rng() % 3));
-  }
+  const OccupancyGrid m = testing::RandomGrid(37, 23, rng);
   EXPECT_DOUBLE_EQ(CountAgreement(m, m, Pose2()).omega(), 1.0);
 }
 
@@ -54,11 +51,8 @@ TEST(AcceptanceIndex, IsZeroWithoutAgreement) {
 TEST(AcceptanceIndex, MatchesMaterialisedRotatedCopy) {
   // Oracle: rotate b explicitly cell by cell into a's grid and count there.
   std::mt19937 rng(9);
-  OccupancyGrid a(GridGeometry(0.05, {30, 30})), b(GridGeometry(0.05, {20, 15}));
-  for (int j = 0; j < 30; ++j)
-    for (int i = 0; i < 30; ++i) a.set({i, j}, static_cast<CellState>(rng() % 3));
-  for (int j = 0; j < 15; ++j)
-    for (int i = 0; i < 20; ++i) b.set({i, j}, static_cast<CellState>(rng() % 3));
+  const OccupancyGrid a = testing::RandomGrid(30, 30, rng);
+  const OccupancyGrid b = testing::RandomGrid(20, 15, rng);
   const Pose2 T_ga_gb(12.3, 4.1, 0.9);
   Agreement expected;
   for (int j = 0; j < 15; ++j) {
@@ -84,9 +78,8 @@ namespace {
 
 TEST(AcceptanceIndex, RowSpansGiveTheSameCountsAtEveryStride) {
   std::mt19937 rng(21);
-  OccupancyGrid a(GridGeometry(0.05, {60, 60})), b(GridGeometry(0.05, {40, 30}));
-  for (int j = 0; j < 60; ++j)
-    for (int i = 0; i < 60; ++i) a.set({i, j}, static_cast<CellState>(rng() % 3));
+  const OccupancyGrid a = testing::RandomGrid(60, 60, rng);
+  OccupancyGrid b(GridGeometry(0.05, {40, 30}));
   // b: a tilted known band with unknown margins, like a re-framed map.
   for (int j = 0; j < 30; ++j) {
     for (int i = 0; i < 40; ++i) {
@@ -132,9 +125,8 @@ TEST(AcceptanceIndex, MatchesBruteForceForRandomPosesIncludingPartialOverlaps) {
   // beyond each of its four edges, entirely outside, or on exact cell borders must all count
   // what the cell-by-cell oracle counts.
   std::mt19937 rng(33);
-  OccupancyGrid a(GridGeometry(0.05, {47, 38})), b(GridGeometry(0.05, {29, 41}));
-  for (int j = 0; j < a.height(); ++j)
-    for (int i = 0; i < a.width(); ++i) a.set({i, j}, static_cast<CellState>(rng() % 3));
+  const OccupancyGrid a = testing::RandomGrid(47, 38, rng);
+  OccupancyGrid b(GridGeometry(0.05, {29, 41}));
   for (int j = 0; j < b.height(); ++j)
     for (int i = 0; i < b.width(); ++i)
       if (i > j / 3) b.set({i, j}, static_cast<CellState>(rng() % 3));

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "tests/support/random_grid.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -62,9 +63,7 @@ TEST(OccupiedCellCenters, UsesCellCentresFromTheBottomRow) {
 
 TEST(OccupiedAndFreeCellCenters, GivesTheListsInScanOrderLikeCellCenters) {
   std::mt19937 rng(3);
-  OccupancyGrid g(GridGeometry(0.05, {37, 29}));
-  for (int j = 0; j < g.height(); ++j)
-    for (int i = 0; i < g.width(); ++i) g.set({i, j}, static_cast<CellState>(rng() % 3));
+  const OccupancyGrid g = testing::RandomGrid(37, 29, rng);
   // The lists by hand, cell by cell in scan order.
   std::vector<Eigen::Vector2f> want[3];
   for (int j = 0; j < g.height(); ++j)
