@@ -40,6 +40,8 @@ void AppendAlignment(std::string& bytes, const char* name, const LocalAlignmentO
   AppendField(bytes, ".function_tolerance", a.function_tolerance);
 }
 
+bool IsFraction(double value) { return value >= 0.0 && value <= 1.0; }  // false for NaN
+
 constexpr std::uint32_t kPairPayloadTag = 0x70616972;         // "pair"
 constexpr std::uint32_t kPreparationPayloadTag = 0x70726570;  // "prep"
 // A field's cells as 1 byte each: the index of its distance in a table of the field's distinct
@@ -252,14 +254,21 @@ std::optional<PairOutcome> ParsePairOutcome(const std::string& payload) {
         !reader.Read(h.evidence_nats)) {
       return std::nullopt;
     }
-    // Stored yaws are already wrapped into (-pi, pi], which Pose2's wrapping keeps bit for bit.
+    // Values no pair search gives are not trusted: a finite pose whose yaw is already wrapped
+    // into (-pi, pi] (which Pose2's wrapping keeps bit for bit, so the payload written back is
+    // this one), omega and wall agreement fractions, a count of cells. The evidence may be NaN
+    // (not measured) and the margin infinite (no runner-up).
+    if (!std::isfinite(x) || !std::isfinite(y) || !(yaw > -M_PI && yaw <= M_PI) ||
+        !IsFraction(h.omega) || h.overlap_cells < 0 || !IsFraction(h.wall_agreement)) {
+      return std::nullopt;
+    }
     h.T_a_b = Pose2(x, y, yaw);
     outcome.hypotheses.push_back(h);
   }
   std::uint8_t ambiguous = 0;
   if (!reader.Read(outcome.overlap_cells) || !reader.Read(outcome.wall_agreement) ||
       !reader.Read(outcome.margin_nats) || !reader.Read(ambiguous) || ambiguous > 1 ||
-      !reader.AtEnd()) {
+      !reader.AtEnd() || outcome.overlap_cells < 0 || !IsFraction(outcome.wall_agreement)) {
     return std::nullopt;
   }
   outcome.ambiguous = ambiguous == 1;

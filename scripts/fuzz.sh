@@ -10,7 +10,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds="${FUZZ_SECONDS:-40}"
-targets=(map job octree bag)
+targets=(map job octree bag cache)
 bash scripts/sanitize_build.sh --target "${targets[@]/%/_fuzzer}"
 
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1"

@@ -4,10 +4,18 @@ fixture and every map case of the malformed catalogue becomes "<yaml>\\n#IMAGE#\
 with the YAML's image renamed image.pgm (map_fuzzer.cpp); every job case of the catalogue and a
 few valid job files become job seeds (job_fuzzer.cpp writes a.yaml/b.yaml beside them); the small
 valid octrees in tests/data/octree (written by OctoMap) and every octree case of the catalogue
-become octree seeds (octree_fuzzer.cpp reads each as a .bt and as a .ot)."""
+become octree seeds (octree_fuzzer.cpp reads each as a .bt and as a .ot).
+
+The cache seeds are entries that `fleetmerge merge --cache` writes for cache_fuzzer.cpp's two
+rooms (written here as PGM maps): one pair's and each room's preparation. They need a built
+fleetmerge: `make_corpus.py --fleetmerge build/cli/fleetmerge`; without it the cache seeds are
+left as they are."""
+import argparse
 import os
 import re
 import shutil
+import subprocess
+import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "data")
@@ -25,8 +33,45 @@ def map_seed(yaml_path):
     return text + b"\n#IMAGE#\n" + image
 
 
+def write_room(folder, name, first_column, width):
+    """cache_fuzzer.cpp's Room(first_column, width): a PGM map of 40 rows (grid row 0, the
+    bottom, is the image's last) of `width` 5 cm cells, free (254) or wall (0)."""
+    rows = []
+    for r in reversed(range(40)):
+        row = bytearray()
+        for c in range(width):
+            x = first_column + c
+            wall = (r in (0, 39) or x in (0, 63) or (x == 20 and r < 28) or (x == 44 and r > 12)
+                    or (r == 20 and 44 < x < 58))
+            row.append(0 if wall else 254)
+        rows.append(bytes(row))
+    with open(os.path.join(folder, name + ".pgm"), "wb") as f:
+        f.write(b"P5\n%d 40\n255\n" % width + b"".join(rows))
+    with open(os.path.join(folder, name + ".yaml"), "w") as f:
+        f.write(f"image: {name}.pgm\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\nnegate: 0\n"
+                "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    return os.path.join(folder, name + ".yaml")
+
+
+def cache_seeds(fleetmerge):
+    """The entry files `merge --cache` writes for the two rooms, by name."""
+    with tempfile.TemporaryDirectory() as tmp:
+        maps = [write_room(tmp, "room_a", 0, 48), write_room(tmp, "room_b", 16, 48)]
+        cache = os.path.join(tmp, "cache")
+        subprocess.run([fleetmerge, "merge", "--quiet", "--cache", cache, "--out",
+                        os.path.join(tmp, "out")] + maps, check=True)
+        entries = sorted(n for n in os.listdir(cache) if n.endswith(".entry"))
+        return {"entry_%d" % k: open(os.path.join(cache, n), "rb").read()
+                for k, n in enumerate(entries)}
+
+
 def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--fleetmerge", help="a built fleetmerge, for the cache seeds")
+    args = parser.parse_args()
     seeds = {"map": {}, "job": {}, "octree": {}, "bag": {}}
+    if args.fleetmerge:
+        seeds["cache"] = cache_seeds(args.fleetmerge)
     octrees = os.path.join(DATA, "octree")
     for name in sorted(os.listdir(octrees)):
         if name.endswith((".bt", ".ot")):

@@ -7,9 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -459,6 +462,50 @@ TEST(PairOutcomePayload, RoundTripsBitForBitAndRefusesOtherBytes) {
   std::string huge_count = payload;
   huge_count[4] = '\xff';
   EXPECT_FALSE(ParsePairOutcome(huge_count));
+}
+
+// An entry sealed with a valid checksum (a stray writer, a bug of another build of this
+// version) still holds values the search gives, or it is refused: no NaN or infinite pose, no yaw
+// outside (-pi, pi] (Pose2 would wrap it, and the pair would differ from the entry), no omega or
+// wall agreement outside [0, 1], no negative cell count. The search's own NaN evidence (not
+// measured) and infinite margin (no runner-up) are kept.
+TEST(PairOutcomePayload, RefusesValuesNoSearchGives) {
+  PairOutcome outcome;
+  outcome.hypotheses.push_back({Pose2(1.25, -3.5, 0.5), 0.97, 12345, 0.91, 17.5});
+  outcome.hypotheses.push_back(
+      {Pose2(0.1, 0.2, -0.3), 0.5, 99, 0.25, std::numeric_limits<double>::quiet_NaN()});
+  outcome.overlap_cells = 12345;
+  outcome.wall_agreement = 0.91;
+  outcome.margin_nats = std::numeric_limits<double>::infinity();
+  const std::string payload = PairOutcomePayload(outcome);
+  ASSERT_TRUE(ParsePairOutcome(payload));
+  EXPECT_EQ(PairOutcomePayload(*ParsePairOutcome(payload)), payload);
+  // The payload's doubles after the tag and the count: hypothesis k's x, y, yaw, omega, overlap
+  // (an int64), walls, evidence at 8 + 56 k + 8 i; then the pair's overlap and walls.
+  const auto with = [&](std::size_t at, auto value) {
+    std::string bytes = payload;
+    std::memcpy(&bytes[at], &value, sizeof value);
+    return bytes;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::size_t pair_fields = 8 + 56 * 2;
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"NaN x", with(8, nan)},
+      {"infinite y", with(8 + 8, -inf)},
+      {"yaw beyond pi", with(8 + 16, 4.0)},
+      {"yaw -pi (written as +pi)", with(8 + 16, -M_PI)},
+      {"omega above 1", with(8 + 24, 1.5)},
+      {"NaN omega", with(8 + 56 + 24, nan)},
+      {"negative overlap", with(8 + 32, std::int64_t{-1})},
+      {"negative wall agreement", with(8 + 56 + 40, -0.25)},
+      {"negative pair overlap", with(pair_fields, std::int64_t{-5})},
+      {"pair walls above 1", with(pair_fields + 8, 2.0)},
+  };
+  for (const auto& [what, bytes] : refused) {
+    EXPECT_FALSE(ParsePairOutcome(bytes)) << what;
+  }
+  EXPECT_TRUE(ParsePairOutcome(with(8 + 16, M_PI))) << "yaw pi";
 }
 
 // Two preparations of one map hold the same values, bit for bit.
