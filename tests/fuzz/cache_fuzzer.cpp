@@ -1,16 +1,19 @@
 // Fuzzes what a re-run reads back from its cache folder (io/cache_folder.hpp,
 // pipeline/pair_cache.hpp), which a killed job, a full disk or a stray write may have left in any
 // state. An input is an entry file's bytes (the seeds are entries that `merge --cache` wrote).
-//   1. The file as found, under an entry's name: CacheFolder::Read checks its header, version,
-//      key and checksum, and must refuse it or return its payload.
-//   2. Its payload (the header's fields skipped as far as they go; the whole input when they do
-//      not parse) written by CacheFolder::Write and read back: the same bytes. The fuzzer thus
-//      gets past the checksum to the payload parsers, ParsePairOutcome and ParsePreparation. A
-//      pair payload that parses must be written back as the same bytes.
+//   1. The file as found, under its own key's name, in a folder of its own version:
+//      CacheFolder::Read checks its header, version, key and checksum, and must refuse it unless
+//      it is the very entry Write makes of the payload it returns.
+//   2. Its payload (the whole input when the header does not parse that far) written by
+//      CacheFolder::Write and read back: the same bytes. The fuzzer thus gets past the checksum
+//      to the payload parsers, ParsePairOutcome and ParsePreparation. A pair payload that parses
+//      must be written back as the same bytes.
 //   3. A preparation that parses is put to use as a map's (the cache keys it by the map's cells,
 //      but trusts nothing): a small room prepared from it is paired with another, both ways.
 // Anything but a clean run or a fleetmerge::Error is a finding.
+#include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 #include <string>
 
@@ -41,22 +44,32 @@ OccupancyGrid Room(int first_column, int width) {
   return OccupancyGrid(GridGeometry(0.05, Eigen::Array2i(width, 40)), cells);
 }
 
-// The payload inside an entry file's bytes (io/cache_folder.hpp's layout), or nullopt when the
+// An entry file's version, key and payload (io/cache_folder.hpp's layout), or nullopt when its
 // header does not parse that far.
-std::optional<std::string> PayloadOf(const std::string& entry) {
+struct EntryFields {
+  std::string version;
+  ContentDigest key{};
+  std::string payload;
+};
+std::optional<EntryFields> FieldsOf(const std::string& entry) {
+  EntryFields fields;
   std::size_t at = 16 + 4 + 4;  // magic, format, byte order
   std::uint32_t version_size = 0;
   if (entry.size() < at + sizeof version_size) return std::nullopt;
   std::memcpy(&version_size, entry.data() + at, sizeof version_size);
   at += sizeof version_size;
-  if (entry.size() - at < std::size_t{version_size} + 16) return std::nullopt;
-  at += version_size + 16;  // the version, the key
+  if (entry.size() - at < std::size_t{version_size} + fields.key.size()) return std::nullopt;
+  fields.version = entry.substr(at, version_size);
+  at += version_size;
+  std::memcpy(fields.key.data(), entry.data() + at, fields.key.size());
+  at += fields.key.size();
   std::uint64_t payload_size = 0;
   if (entry.size() - at < sizeof payload_size) return std::nullopt;
   std::memcpy(&payload_size, entry.data() + at, sizeof payload_size);
   at += sizeof payload_size;
   if (entry.size() - at < payload_size) return std::nullopt;
-  return entry.substr(at, payload_size);
+  fields.payload = entry.substr(at, payload_size);
+  return fields;
 }
 
 }  // namespace
@@ -64,14 +77,22 @@ std::optional<std::string> PayloadOf(const std::string& entry) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const OccupancyGrid room_a = Room(0, 48), room_b = Room(16, 48);
   static const PairOptions options;
-  static CacheFolder folder(fuzz::ScratchDir() / "cache", "fuzz", CacheFolderOptions{});
-  static const ContentDigest key = ContentHashOf("entry");
   const std::string input(reinterpret_cast<const char*>(data), size);
+  // The entry's own version and key where it has them, so that a seed (an entry of a real
+  // cache) is trusted as found and its mutants fail one check at a time.
+  const std::optional<EntryFields> fields = FieldsOf(input);
+  const std::string version = fields ? fields->version : "fuzz";
+  const ContentDigest key = fields ? fields->key : ContentHashOf("entry");
+  const std::filesystem::path dir = fuzz::ScratchDir() / "cache";
   try {
+    CacheFolder folder(dir, version, CacheFolderOptions{});
     fuzz::WriteBytes(folder.EntryPath(key), input.data(), input.size());
-    (void)folder.Read(key);
+    if (const std::optional<std::string> found = folder.Read(key)) {
+      // Only an entry this build writes is trusted: these very bytes for that payload.
+      if (CacheEntryBytes(key, version, *found) != input) abort();
+    }
 
-    const std::string payload = PayloadOf(input).value_or(input);
+    const std::string payload = fields ? fields->payload : input;
     folder.Write(key, payload);
     const std::optional<std::string> read = folder.Read(key);
     if (!read || *read != payload) abort();  // an entry this build wrote is read back whole
@@ -89,5 +110,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   } catch (const Error&) {
   }
+  std::error_code ignored;  // one entry at a time: the folder does not grow with the run
+  std::filesystem::remove(dir / (ToHex(key) + ".entry"), ignored);
   return 0;
 }
