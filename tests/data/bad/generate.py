@@ -171,6 +171,28 @@ job_case("job_reference_unknown", "maps: [a.yaml, b.yaml]\noutput: out\nreferenc
 job_case("job_deep_nesting", "maps: " + "[" * 20000 + "]" * 20000 + "\noutput: out\n", "job.yaml")
 job_case("job_output_is_a_file", "maps: [a.yaml, b.yaml]\noutput: a.pgm\n",
          "exists and is not a folder")
+# A site's fixed map, robots' known start poses and the re-run cache (configs/README.md).
+job_case("job_fixed_pose_nan", "maps:\n  - {path: a.yaml, fixed: true, pose: [.nan, 0, 0]}\n"
+         "  - b.yaml\noutput: out\n", "key 'maps[0].pose[0]': expected a finite number")
+job_case("job_fixed_pose_two_numbers", "maps:\n  - {path: a.yaml, fixed: true, pose: [1, 2]}\n"
+         "  - b.yaml\noutput: out\n", "got a list of 2 elements")
+job_case("job_fixed_not_a_bool", "maps:\n  - {path: a.yaml, fixed: maybe}\n  - b.yaml\n"
+         "output: out\n", "key 'maps[0].fixed': expected true or false")
+job_case("job_pose_without_fixed", "maps:\n  - {path: a.yaml, pose: [1, 2, 0]}\n  - b.yaml\n"
+         "output: out\n", "add 'fixed: true' or remove 'pose'")
+job_case("job_initial_pose_on_fixed_map", "maps:\n  - {path: a.yaml, fixed: true, "
+         "initial_pose: [1, 2, 0]}\n  - b.yaml\noutput: out\n", "a fixed map's pose is its 'pose'")
+job_case("job_initial_pose_inf", "maps:\n  - a.yaml\n  - {path: b.yaml, initial_pose: [0, .inf, 0]}\n"
+         "output: out\n", "key 'maps[1].initial_pose[1]': expected a finite number")
+job_case("job_sigma_negative", "maps:\n  - a.yaml\n  - {path: b.yaml, initial_pose: [0, 0, 0], "
+         "initial_pose_sigma: [-1, 0.1]}\noutput: out\n",
+         "key 'maps[1].initial_pose_sigma[0]': expected a finite number > 0")
+job_case("job_sigma_without_initial_pose", "maps:\n  - a.yaml\n  - {path: b.yaml, "
+         "initial_pose_sigma: [0.5, 0.1]}\noutput: out\n", "add 'initial_pose: [x, y, yaw]'")
+job_case("job_cache_max_mb_zero", "maps: [a.yaml, b.yaml]\noutput: out\ncache: c\ncache_max_mb: 0\n",
+         "key 'cache_max_mb': expected an integer in [1, ")
+job_case("job_cache_a_list", "maps: [a.yaml, b.yaml]\noutput: out\ncache: [c]\n",
+         "key 'cache': expected a cache folder")
 
 
 # --- octrees (.bt, .ot) -------------------------------------------------------------------------
