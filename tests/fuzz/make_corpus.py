@@ -111,10 +111,10 @@ def main():
                                     b"max_map_cells: 1000\nhough: {n_theta: 90, rho_step: 2, "
                                     b"sampling: 'random:0.5'}\ntranslation: {method: spectra}\n"
                                     b"pose_graph: {loss: huber, loss_scale: 0.5}\nfusion: max\n")
-    seeds["job"]["good_site_job"] = (b"name: site\nmaps:\n  - {path: a.yaml, name: site, fixed: true, "
-                                     b"pose: [10.0, 5.0, 0.5]}\n  - {path: b.yaml, initial_pose: "
-                                     b"[10.3, 4.7, -0.1], initial_pose_sigma: [0.3, 0.1]}\n"
-                                     b"output: out\ncache: cache\ncache_max_mb: 64\n")
+    seeds["job"]["good_site_job"] = (b"name: site\nmaps:\n  - {path: a.yaml, name: site, "
+                                     b"fixed: true, pose: [10.0, 5.0, 0.5]}\n  - {path: b.yaml, "
+                                     b"initial_pose: [10.3, 4.7, -0.1], initial_pose_sigma: "
+                                     b"[0.3, 0.1]}\noutput: out\ncache: cache\ncache_max_mb: 64\n")
     seeds["job"]["good_two_jobs"] = (b"jobs:\n  - {name: one, maps: [a.yaml], output: o1}\n"
                                      b"  - {name: two, maps: [a.yaml, b.yaml], output: o2, "
                                      b"omega_threshold: 0.8, seed: 7, refine: false}\n")

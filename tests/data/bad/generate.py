@@ -182,14 +182,16 @@ job_case("job_pose_without_fixed", "maps:\n  - {path: a.yaml, pose: [1, 2, 0]}\n
          "output: out\n", "add 'fixed: true' or remove 'pose'")
 job_case("job_initial_pose_on_fixed_map", "maps:\n  - {path: a.yaml, fixed: true, "
          "initial_pose: [1, 2, 0]}\n  - b.yaml\noutput: out\n", "a fixed map's pose is its 'pose'")
-job_case("job_initial_pose_inf", "maps:\n  - a.yaml\n  - {path: b.yaml, initial_pose: [0, .inf, 0]}\n"
-         "output: out\n", "key 'maps[1].initial_pose[1]': expected a finite number")
+job_case("job_initial_pose_inf", "maps:\n  - a.yaml\n  - {path: b.yaml, "
+         "initial_pose: [0, .inf, 0]}\noutput: out\n",
+         "key 'maps[1].initial_pose[1]': expected a finite number")
 job_case("job_sigma_negative", "maps:\n  - a.yaml\n  - {path: b.yaml, initial_pose: [0, 0, 0], "
          "initial_pose_sigma: [-1, 0.1]}\noutput: out\n",
          "key 'maps[1].initial_pose_sigma[0]': expected a finite number > 0")
 job_case("job_sigma_without_initial_pose", "maps:\n  - a.yaml\n  - {path: b.yaml, "
          "initial_pose_sigma: [0.5, 0.1]}\noutput: out\n", "add 'initial_pose: [x, y, yaw]'")
-job_case("job_cache_max_mb_zero", "maps: [a.yaml, b.yaml]\noutput: out\ncache: c\ncache_max_mb: 0\n",
+job_case("job_cache_max_mb_zero",
+         "maps: [a.yaml, b.yaml]\noutput: out\ncache: c\ncache_max_mb: 0\n",
          "key 'cache_max_mb': expected an integer in [1, ")
 job_case("job_cache_a_list", "maps: [a.yaml, b.yaml]\noutput: out\ncache: [c]\n",
          "key 'cache': expected a cache folder")
