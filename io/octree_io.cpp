@@ -270,12 +270,13 @@ void SaveOctree(const octomap::OcTree& tree, const fs::path& path,
   CheckNotAnInput(path, protected_inputs);
   std::ostringstream bytes(std::ios::binary);
   if (format == OctreeFormat::kBinary) {
-    // OctoMap's header, written here because writeBinaryConst() also prints progress on stderr;
-    // the data is OctoMap's own encoding.
+    // OctoMap's header, and its data written node by node from the root: writeBinaryConst()
+    // and writeBinaryData() do the same but print "Writing N nodes to output stream..." on
+    // stderr (Debian builds the library with its debug output), which `merge --quiet` must not.
     bytes << std::setprecision(17) << kBinaryMagic << "\n# (written by fleetmerge)\n#\nid "
           << tree.getTreeType() << "\nsize " << tree.size() << "\nres " << tree.getResolution()
           << "\ndata\n";
-    tree.writeBinaryData(bytes);
+    tree.writeBinaryNode(bytes, tree.getRoot());  // the root exists: the tree is not empty
   } else {
     tree.write(bytes);
   }

@@ -288,6 +288,22 @@ TEST_F(MergeCliTest, ProgressLinesOnStderrUnlessQuiet) {
   EXPECT_TRUE(fs::exists(dir / "quiet" / "report.json"));
 }
 
+// Octrees too: OctoMap's writeBinaryData() prints "Writing N nodes to output stream..." on
+// stderr, without a newline, whenever the library is built with its debug output (Debian's is),
+// which broke --quiet and ran into the next line of the output. `example` writes octrees the same
+// way and prints only its own lines.
+TEST(MergeCliOctrees, QuietMergeOfOctreesPrintsNothingOnStderr) {
+  const fs::path dir = testing::MakeTempDir("merge_octrees_quiet");
+  const auto example = Fleetmerge("example " + ShellQuote(dir) + " --octree");
+  ASSERT_EQ(example.exit_code, 0) << example.both();
+  EXPECT_EQ(example.err, "");
+  const auto quiet = Fleetmerge("merge --quiet " + ShellQuote(dir / "job.yaml"));
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.both();
+  EXPECT_EQ(quiet.err, "");
+  EXPECT_EQ(quiet.out.rfind("job", 0), 0u) << "stdout starts with the job's line:\n" << quiet.out;
+  EXPECT_TRUE(fs::exists(dir / "merged" / "merged_0.bt"));
+}
+
 TEST_F(MergeCliTest, ProgressShowsTheTimeLeftBeforeAStageEnds) {
   // 4 maps, 6 pairs: lines at 2/6 and 4/6 with the time left, and 6/6 without.
   const fs::path out = testing::MakeTempDir("merge_progress_left") / "out";

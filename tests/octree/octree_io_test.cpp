@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include "core/error.hpp"
+#include "tests/support/files.hpp"
 #include "tests/support/shared_data.hpp"
 
 namespace fleetmerge {
@@ -86,6 +87,23 @@ TEST(OctreeIo, FullRoundTripKeepsLogOdds) {
   const auto read = LoadOctree(dir / "t.OT");
   EXPECT_EQ(LeavesOf(*read), LeavesOf(tree));
   EXPECT_EQ(read->size(), tree.size());
+}
+
+// SaveOctree writes a .bt's data node by node (io/octree_io.cpp: OctoMap's own writers print on
+// stderr, which MergeCliOctrees.QuietMergeOfOctreesPrintsNothingOnStderr checks): the same bytes
+// as OctoMap's writeBinaryConst() after the header.
+TEST(OctreeIo, BinaryDataAreOctoMapsOwnBytes) {
+  const fs::path dir = testing::MakeTempDir("octree_io_bytes");
+  const octomap::OcTree tree = RandomTree(4);
+  SaveOctree(tree, dir / "t.bt");
+  std::ostringstream octomap_bytes;
+  tree.writeBinaryConst(octomap_bytes);
+  const std::string expected = octomap_bytes.str(), written = testing::ReadFile(dir / "t.bt");
+  const std::string data_line = "\ndata\n";
+  ASSERT_NE(expected.find(data_line), std::string::npos);
+  ASSERT_NE(written.find(data_line), std::string::npos);
+  ASSERT_GT(expected.size() - expected.find(data_line), 1000u);
+  EXPECT_EQ(written.substr(written.find(data_line)), expected.substr(expected.find(data_line)));
 }
 
 TEST(OctreeIo, RefusesFilesThatAreNotOcTrees) {
