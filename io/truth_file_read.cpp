@@ -130,6 +130,12 @@ GroundTruth LoadTruth(const fs::path& path) {
         "got " +
         Describe(root));
   }
+  // A report.json parses as YAML too: the two files of `eval` given the other way round.
+  if (root["components"] && !root["format"]) {
+    errors.Fail(
+        "expected a truth file; this is a report.json of `fleetmerge merge` (`fleetmerge eval "
+        "REPORT TRUTH` takes the report first)");
+  }
   const YamlField top{root, "", root.Mark().is_null() ? 1 : root.Mark().line + 1};
   const YamlMapping file(top, {"format", "seed", "buildings", "maps", "overlaps"}, "a mapping",
                          errors);

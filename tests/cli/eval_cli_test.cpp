@@ -101,6 +101,15 @@ TEST(EvalCliTest, BadInputExitsOneNamingTheFile) {
   EXPECT_EQ(eval.exit_code, 1);
   EXPECT_NE(eval.err.find((bad / "robot1.yaml").string()), std::string::npos) << eval.err;
 
+  // The two files the wrong way round: the report read as the truth says so.
+  eval = Fleetmerge("eval " + ShellQuote(d / "truth.yaml") + " " + ShellQuote(d / "report.json"));
+  EXPECT_EQ(eval.exit_code, 1);
+  EXPECT_NE(eval.err.find((d / "report.json").string() +
+                          ": expected a truth file; this is a report.json of `fleetmerge merge` "
+                          "(`fleetmerge eval REPORT TRUTH` takes the report first)"),
+            std::string::npos)
+      << eval.err;
+
   // The job file as the report: not JSON.
   eval = Fleetmerge("eval " + ShellQuote(d / "job.yaml") + " " + ShellQuote(d / "truth.yaml"));
   EXPECT_EQ(eval.exit_code, 1);
