@@ -23,7 +23,10 @@ std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // CLI11 prints the message (or the help, or the version) and gives each kind of error a code
+    // of its own (105, 106, 109, ...): one code, 2, for every wrong command line, as the
+    // options' own checks below.
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const Error& e) {  // thrown by option callbacks (e.g. a bad sampling spec)
     std::cerr << "fleetmerge: error: " << e.what() << "\n";
     return 2;

@@ -16,8 +16,8 @@ std::string VersionLine();
 // The description, one subcommand required, --version.
 void SetUpTopLevel(CLI::App& app);
 
-// Parses the command line: the exit code to leave with (a parse error, --help, --version, bad
-// option values), or nothing when a command is to run.
+// Parses the command line: the exit code to leave with (2 for a wrong command line: a parse
+// error or a bad option value; 0 for --help and --version), or nothing when a command is to run.
 std::optional<int> ParseCommandLine(CLI::App& app, int argc, char** argv);
 
 // Runs a command: its exit code, or 1 after "fleetmerge: error: ..." on stderr for bad input.
