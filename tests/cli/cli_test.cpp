@@ -125,7 +125,7 @@ TEST_F(CliTest, UsageErrorsExitTwo) {
     EXPECT_EQ(run.exit_code, 2) << "fleetmerge " << args << "\n" << run.both();
     EXPECT_FALSE(run.err.empty()) << "fleetmerge " << args;
   }
-  for (const std::string& args : {"--help", "--version", "pair --help", "merge --help"}) {
+  for (const char* args : {"--help", "--version", "pair --help", "merge --help"}) {
     EXPECT_EQ(Fleetmerge(args).exit_code, 0) << "fleetmerge " << args;
   }
 }
