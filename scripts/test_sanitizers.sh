@@ -39,6 +39,12 @@ same_paths_on_more_data+='|^FixedBase\.[A-Za-z]*SiteOfFourBuildings'
 # the site-frame node; Api.AMapThatPairsWithNoneIsPlacedAtItsInitialPose the placement by a prior.
 # The other three rerun that code on more robots (about 65 s of CPU under ASan).
 same_paths_on_more_data+='|^Priors\.(SlightlyOff|WithoutAFixedMap|ARobotThatOverlapsNobody)'
+# Command lines and output streams, not memory: CliTest.UsageErrorsExitTwo starts the executable
+# 14 times (exit codes) and MergeCliOctrees.QuietMergeOfOctreesPrintsNothingOnStderr checks
+# stderr (the octree merge runs in OctreeFleet.*); the cache's size bound on 276 pairs
+# (PairCacheTest.ABoundBelowTheJobsPairsKeepsThemAll runs it on 3). About 60 s of CPU under ASan.
+same_paths_on_more_data+='|^CliTest\.UsageErrorsExitTwo|^MergeCliOctrees\.QuietMergeOfOctrees'
+same_paths_on_more_data+='|^MergeCacheCliTest\.ABoundBelowTheJobsPairsKeepsThemAndWarns'
 # The executable's own shared libraries (cli/CMakeLists.txt): a unity build's executable links
 # whole batches of files, and so what any file of a batch calls (Ceres, LAPACK, OctoMap); stage 1
 # checks the file-by-file build that users get.
