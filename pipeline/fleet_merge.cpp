@@ -130,6 +130,29 @@ void RejectUnconfirmedAmbiguous(PairOutcome& pair) {
   pair.note = note.str();
 }
 
+// The merged map's cell size: the job's `resolution`, else the component's reference map's.
+double MergedResolution(const std::vector<const OccupancyGrid*>& maps,
+                        const FleetComponent& component, const FleetOptions& options) {
+  return options.resolution_m > 0.0 ? options.resolution_m
+                                    : maps[component.reference]->geometry().resolution_m();
+}
+
+// A component of one map as its merged map: the map's cells as they are (compositing would crop
+// them to the known ones) on its lattice moved by its pose in the merged frame, so that the map
+// file lies where the report and the launch files put the map.
+void PlaceAsItIs(const std::vector<const OccupancyGrid*>& maps, const FleetResult& result,
+                 FleetComponent& component, const FleetOptions& options) {
+  const int m = component.maps.front();
+  const double resolution_m = MergedResolution(maps, component, options);
+  const bool compared_cells = std::abs(resolution_m - result.resolution_m) <= 1e-9 * resolution_m;
+  const OccupancyGrid grid =
+      compared_cells ? result.maps[m] : ResampleToResolution(*maps[m], resolution_m);
+  const GridGeometry& g = grid.geometry();
+  component.merged.emplace(
+      GridGeometry(g.resolution_m(), g.size(), result.T_component_map[m] * g.T_map_grid()),
+      grid.cells());
+}
+
 // The component's merged map, on its reference map's cells: at the job's resolution when the
 // job sets one, else at the reference's own. Users navigate in the reference robot's map, so
 // where only that map knows a cell the merged map holds that very cell. Inputs finer than the
@@ -137,9 +160,7 @@ void RejectUnconfirmedAmbiguous(PairOutcome& pair) {
 // walls that a nearest-cell lookup would drop).
 void CompositeComponent(const std::vector<const OccupancyGrid*>& maps, const FleetResult& result,
                         FleetComponent& component, const FleetOptions& options) {
-  const double resolution_m = options.resolution_m > 0.0
-                                  ? options.resolution_m
-                                  : maps[component.reference]->geometry().resolution_m();
+  const double resolution_m = MergedResolution(maps, component, options);
   const bool compared_cells = std::abs(resolution_m - result.resolution_m) <= 1e-9 * resolution_m;
   std::vector<OccupancyGrid> resampled;  // only when the merged cells are not the compared ones
   resampled.reserve(component.maps.size());
@@ -341,10 +362,11 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
     for (int m = 0; m < static_cast<int>(maps.size()); ++m) {
       if (graph.component_of[m] == static_cast<int>(c)) component.maps.push_back(m);
     }
-    if (maps.size() == 1) {
-      // A one-map job: that map is the merged map, as it is (even all unknown, or 1 x 1 cell;
-      // compositing would crop it to its known cells).
-      component.merged = result.maps.front();
+    if (component.maps.size() == 1 && (maps.size() == 1 || IsFixed(fixed, component.maps[0]))) {
+      // A one-map job (even all unknown, or 1 x 1 cell), and a fixed map that no other map
+      // joined: its frame is still the merged frame, and a site's daily job still writes the
+      // site's map. Other components of one map get none: the map file is its own result.
+      PlaceAsItIs(maps, result, component, options);
     } else if (component.maps.size() >= 2) {
       CompositeComponent(maps, result, component, options);
     }

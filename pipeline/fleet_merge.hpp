@@ -1,7 +1,8 @@
 // The fleet-merging job on in-memory maps (the product's main job): every pair of maps gets
 // Hough hypotheses (pipeline/all_pairs.hpp); pairs with a high best omega and enough overlap
 // become omega-weighted pose-graph edges, solved per connected component with cycle checks
-// (pipeline/fleet_graph.hpp); each component of two or more maps is composited into one map.
+// (pipeline/fleet_graph.hpp); each component of two or more maps is composited into one map, and
+// a fixed map that no map joined is its component's merged map as it is.
 // A map that overlaps no other stays unmerged: never forced in, never dropped.
 #pragma once
 
@@ -18,9 +19,10 @@
 namespace fleetmerge {
 
 struct FleetComponent {
-  std::vector<int> maps;                // map indices, in job order
-  int reference = 0;                    // the map whose frame is the component's merged frame
-  std::optional<OccupancyGrid> merged;  // components of two or more maps (or a one-map job)
+  std::vector<int> maps;  // map indices, in job order
+  int reference = 0;      // the map whose frame is the component's merged frame
+  // Components of two or more maps, a one-map job's, and a fixed map's that no map joined.
+  std::optional<OccupancyGrid> merged;
   // ColourPreview of `merged` from the inputs at the compared resolution, made while compositing
   // when FleetOptions::previews asks (empty otherwise, or when the merged cells are not the
   // compared ones: the preview then samples other inputs than compositing did).

@@ -50,8 +50,8 @@ struct OctreeOutputs {
 };
 
 // `octrees` has one entry per job map. Writes dir/merged_<c>.bt for each component that has an
-// octree and is merged (two or more maps, or a one-map job), atomically (WriteFileAtomically with
-// `mode`), never over `protect`.
+// octree and is merged (two or more maps, a one-map job, or a fixed map alone), atomically
+// (WriteFileAtomically with `mode`), never over `protect`.
 OctreeOutputs WriteMergedOctrees(const FleetResult& result, const std::vector<JobOctree>& octrees,
                                  const std::filesystem::path& dir,
                                  const std::vector<std::filesystem::path>& protect,

@@ -4,6 +4,7 @@
 // the base's pose), and the base's cells come out unchanged wherever no robot knows the cell.
 // With a second fixed map: one that agrees with the truth changes nothing; one placed 2 m off
 // stays where it was put, and the edges that contradict the fixed poses are what is rejected.
+// A base that no robot joined is still the merged map, cell for cell where its pose puts it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -357,6 +358,51 @@ TEST(FixedBase, SeveralFixedMapsNeverMove) {
       ExpectRelativeNearTruth(c, disagree, ra, rb);
     }
   }
+}
+
+// The base's merged map is the base itself, cell for cell on its own lattice moved by its pose
+// (not cropped to its known cells), whether or not a robot joined it.
+void ExpectBaseAsItIs(const OccupancyGrid& base, const FleetComponent& component) {
+  ASSERT_TRUE(component.merged.has_value());
+  const GridGeometry& g = component.merged->geometry();
+  EXPECT_EQ(g.size().x(), base.width());
+  EXPECT_EQ(g.size().y(), base.height());
+  EXPECT_DOUBLE_EQ(g.resolution_m(), base.geometry().resolution_m());
+  const Pose2 T_merged_grid = kT_merged_base * base.geometry().T_map_grid();
+  EXPECT_NEAR(g.T_map_grid().x_m(), T_merged_grid.x_m(), 1e-9);
+  EXPECT_NEAR(g.T_map_grid().y_m(), T_merged_grid.y_m(), 1e-9);
+  EXPECT_NEAR(WrapAngle(g.T_map_grid().yaw_rad() - T_merged_grid.yaw_rad()), 0.0, 1e-12);
+  EXPECT_EQ(cv::countNonZero(component.merged->cells() != base.cells()), 0);
+}
+
+// A site's daily job where no robot joins the site's map still writes the site's map, where the
+// report and the launch files put it: the component of the fixed map alone has a merged map.
+// A robot's map alone still gets none (its own file is its result).
+TEST(FixedBase, AFixedMapThatNoMapJoinedIsStillTheMergedMap) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const OccupancyGrid base = LoadMap(*testing::SharedMapsDir() / "robotis_corridor_run1.yaml").grid;
+  // A room of another building: 40 x 40 cells, below any pair's min_overlap_cells.
+  OccupancyGrid room(GridGeometry(base.geometry().resolution_m(), {40, 40}), CellState::kFree);
+  for (int k = 0; k < 40; ++k) {
+    for (const Eigen::Array2i& cell : {Eigen::Array2i(k, 0), Eigen::Array2i(k, 39),
+                                       Eigen::Array2i(0, k), Eigen::Array2i(39, k)}) {
+      room.set(cell, CellState::kOccupied);
+    }
+  }
+  const std::vector<const OccupancyGrid*> maps = {&base, &room};
+  FixedPoses fixed(2);
+  fixed[0] = kT_merged_base;
+  const FleetResult result = MergeFleet(maps, 0, fixed, FleetOptions{});
+  ASSERT_NE(result.component_of[0], result.component_of[1]);  // the room joined nothing
+  ExpectBaseAsItIs(base, result.components[result.component_of[0]]);
+  EXPECT_FALSE(result.components[result.component_of[1]].merged.has_value());
+
+  // A one-map job of the fixed base: the same map, also moved by its pose.
+  FixedPoses alone(1);
+  alone[0] = kT_merged_base;
+  const FleetResult one = MergeFleet({&base}, 0, alone, FleetOptions{});
+  ASSERT_EQ(one.components.size(), 1u);
+  ExpectBaseAsItIs(base, one.components[0]);
 }
 
 TEST(FixedBase, BadFixedPosesAreRefused) {

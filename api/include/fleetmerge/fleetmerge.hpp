@@ -217,7 +217,7 @@ struct Component {
   int id = 0;
   std::vector<std::string> maps;
   std::string reference;
-  std::optional<Map> merged;  // a component of two or more maps (or a one-map job)
+  std::optional<Map> merged;  // two or more maps, a one-map job, or a fixed map alone
 };
 
 struct MergeResult {
