@@ -360,8 +360,8 @@ TEST(FixedBase, SeveralFixedMapsNeverMove) {
   }
 }
 
-// The base's merged map is the base itself, cell for cell on its own lattice moved by its pose
-// (not cropped to its known cells), whether or not a robot joined it.
+// The merged map of a base alone in its component (no map joined it, or a one-map job): the base
+// itself, cell for cell on its own lattice moved by its pose, not cropped to its known cells.
 void ExpectBaseAsItIs(const OccupancyGrid& base, const FleetComponent& component) {
   ASSERT_TRUE(component.merged.has_value());
   const GridGeometry& g = component.merged->geometry();
