@@ -137,6 +137,12 @@ double MergedResolution(const std::vector<const OccupancyGrid*>& maps,
                                     : maps[component.reference]->geometry().resolution_m();
 }
 
+// Whether merged cells of resolution_m are the cells the pairs compared (result.maps), or need
+// the original maps resampled.
+bool ComparedCells(double resolution_m, const FleetResult& result) {
+  return std::abs(resolution_m - result.resolution_m) <= 1e-9 * resolution_m;
+}
+
 // A component of one map as its merged map: the map's cells as they are (compositing would crop
 // them to the known ones) on its lattice moved by its pose in the merged frame, so that the map
 // file lies where the report and the launch files put the map.
@@ -144,7 +150,7 @@ void PlaceAsItIs(const std::vector<const OccupancyGrid*>& maps, const FleetResul
                  FleetComponent& component, const FleetOptions& options) {
   const int m = component.maps.front();
   const double resolution_m = MergedResolution(maps, component, options);
-  const bool compared_cells = std::abs(resolution_m - result.resolution_m) <= 1e-9 * resolution_m;
+  const bool compared_cells = ComparedCells(resolution_m, result);
   const OccupancyGrid grid =
       compared_cells ? result.maps[m] : ResampleToResolution(*maps[m], resolution_m);
   const GridGeometry& g = grid.geometry();
@@ -161,7 +167,7 @@ void PlaceAsItIs(const std::vector<const OccupancyGrid*>& maps, const FleetResul
 void CompositeComponent(const std::vector<const OccupancyGrid*>& maps, const FleetResult& result,
                         FleetComponent& component, const FleetOptions& options) {
   const double resolution_m = MergedResolution(maps, component, options);
-  const bool compared_cells = std::abs(resolution_m - result.resolution_m) <= 1e-9 * resolution_m;
+  const bool compared_cells = ComparedCells(resolution_m, result);
   std::vector<OccupancyGrid> resampled;  // only when the merged cells are not the compared ones
   resampled.reserve(component.maps.size());
   std::vector<CompositeInput> inputs;
