@@ -254,6 +254,8 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
   const InputSampler sampler(inputs, geometry);
   OccupancyGrid merged(geometry);
   cv::Mat1b sampled(size);  // scratch; only each input's region is touched
+  const bool any_fixed = std::any_of(inputs.begin(), inputs.end(),
+                                     [](const CompositeInput& input) { return input.fixed; });
   // Each band of rows is fused from every input's part in it; the bands touch disjoint rows.
   // The counts are the band's own (two 64-row buffers per band, not two merged-size arrays
   // zeroed on one thread before the bands start).
@@ -264,17 +266,25 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
     const cv::Rect band(0, y0, size.width, std::min(kBandRows, size.height - y0));
     const std::unique_ptr<CompositeObserver::Band> seen =
         observer != nullptr ? observer->StartBand(band) : nullptr;
+    // Counts of the maps that move, and (only with fixed inputs) of the fixed ones apart.
     cv::Mat1w occupied_count(band.height, band.width, std::uint16_t{0});
     cv::Mat1w free_count(band.height, band.width, std::uint16_t{0});
+    cv::Mat1w fixed_occupied_count, fixed_free_count;
+    if (any_fixed) {
+      fixed_occupied_count = cv::Mat1w(band.height, band.width, std::uint16_t{0});
+      fixed_free_count = cv::Mat1w(band.height, band.width, std::uint16_t{0});
+    }
     for (std::size_t k = 0; k < inputs.size(); ++k) {
       const cv::Rect region = sampler.Sample(k, band, sampled);
       if (seen && region.area() > 0) seen->Add(k, sampled, region);
+      cv::Mat1w& occupied = inputs[k].fixed ? fixed_occupied_count : occupied_count;
+      cv::Mat1w& free = inputs[k].fixed ? fixed_free_count : free_count;
       // One pass over the region counts both states (masked cv::add calls would take five passes
       // and two mask allocations per input and band).
       for (int j = region.y; j < region.y + region.height; ++j) {
         const std::uint8_t* states = sampled.ptr<std::uint8_t>(j);
-        std::uint16_t* occupied_row = occupied_count.ptr<std::uint16_t>(j - band.y);
-        std::uint16_t* free_row = free_count.ptr<std::uint16_t>(j - band.y);
+        std::uint16_t* occupied_row = occupied.ptr<std::uint16_t>(j - band.y);
+        std::uint16_t* free_row = free.ptr<std::uint16_t>(j - band.y);
         for (int i = region.x; i < region.x + region.width; ++i) {
           occupied_row[i] += states[i] == static_cast<std::uint8_t>(CellState::kOccupied);
           free_row[i] += states[i] == static_cast<std::uint8_t>(CellState::kFree);
@@ -287,6 +297,15 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
       std::uint8_t* merged_row = merged.mutable_cells().ptr<std::uint8_t>(j);
       for (int i = 0; i < size.width; ++i) {
         merged_row[i] = static_cast<std::uint8_t>(Fuse(occupied_row[i], free_row[i], mode));
+      }
+      if (!any_fixed) continue;
+      const std::uint16_t* fixed_occupied_row = fixed_occupied_count.ptr<std::uint16_t>(j - band.y);
+      const std::uint16_t* fixed_free_row = fixed_free_count.ptr<std::uint16_t>(j - band.y);
+      for (int i = 0; i < size.width; ++i) {
+        if (fixed_occupied_row[i] == 0 && fixed_free_row[i] == 0)
+          continue;  // no fixed map knows it
+        merged_row[i] =
+            static_cast<std::uint8_t>(Fuse(fixed_occupied_row[i], fixed_free_row[i], mode));
       }
     }
     if (seen) seen->Finish(merged);

@@ -26,6 +26,11 @@
 //             (conservative, as in kVote).
 //   kMax      kOccupied if any map says occupied, else kFree: conservative for navigation.
 //   kVote     majority of the known states; a tie is kOccupied (conservative).
+// Fixed inputs (CompositeInput::fixed, a site's base map) are kept: a cell that any fixed input
+// knows is fused from the fixed inputs alone, by the same rule, and the other maps fill only the
+// cells no fixed input knows. A site takes yesterday's merged map as today's base; were the
+// robots' cells fused into it, each day's robots would thicken its walls by their own rounding
+// of the walls onto its cells (a cell here and there), and the site map would drift day by day.
 #pragma once
 
 #include <cstdint>
@@ -47,6 +52,8 @@ inline constexpr double kLogOddsFree = -0.40546510810816438;     // log(0.4 / 0.
 struct CompositeInput {
   const OccupancyGrid* grid = nullptr;  // not owned; must outlive the call
   Pose2 T_merged_map;                   // pose of this map's own map frame in the merged frame
+  // A fixed (base) map: where a fixed input knows a cell, the fixed inputs alone decide it.
+  bool fixed = false;
 };
 
 // Sees what Composite samples, for work that needs each input's states at the merged cells as

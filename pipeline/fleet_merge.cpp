@@ -161,11 +161,13 @@ void PlaceAsItIs(const std::vector<const OccupancyGrid*>& maps, const FleetResul
 
 // The component's merged map, on its reference map's cells: at the job's resolution when the
 // job sets one, else at the reference's own. Users navigate in the reference robot's map, so
-// where only that map knows a cell the merged map holds that very cell. Inputs finer than the
+// where only that map knows a cell the merged map holds that very cell; a fixed (base) map is
+// the reference, and every cell it knows is kept (Composite's fixed inputs). Inputs finer than the
 // merged cells are coarsened from the original maps first (ResampleToResolution keeps one-cell
 // walls that a nearest-cell lookup would drop).
 void CompositeComponent(const std::vector<const OccupancyGrid*>& maps, const FleetResult& result,
-                        FleetComponent& component, const FleetOptions& options) {
+                        const FixedPoses& fixed, FleetComponent& component,
+                        const FleetOptions& options) {
   const double resolution_m = MergedResolution(maps, component, options);
   const bool compared_cells = ComparedCells(resolution_m, result);
   std::vector<OccupancyGrid> resampled;  // only when the merged cells are not the compared ones
@@ -179,7 +181,7 @@ void CompositeComponent(const std::vector<const OccupancyGrid*>& maps, const Fle
       resampled.push_back(ResampleToResolution(*maps[m], resolution_m));
       grid = &resampled.back();
     }
-    inputs.push_back({grid, result.T_component_map[m]});
+    inputs.push_back({grid, result.T_component_map[m], IsFixed(fixed, m)});
   }
   std::optional<PreviewColourer> preview;
   if (options.previews && compared_cells) preview.emplace();
@@ -374,7 +376,7 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
       // site's map. Other components of one map get none: the map file is its own result.
       PlaceAsItIs(maps, result, component, options);
     } else if (component.maps.size() >= 2) {
-      CompositeComponent(maps, result, component, options);
+      CompositeComponent(maps, result, fixed, component, options);
     }
     if (progress) progress("composite", static_cast<int>(c) + 1, int(result.components.size()));
   }

@@ -55,7 +55,8 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
 // With fixed (base) maps: `fixed` holds, per map, its given pose T_merged_map or nullopt for a
 // map that moves (empty: none is fixed). Fixed maps never move; the merged frame is theirs;
 // `reference` must be the first of them, whose cell lattice (moved by its pose) the merged map
-// keeps, so its cells come out unchanged where only it knows them. Throws fleetmerge::Error for
+// keeps; every cell a fixed map knows comes out unchanged, and the other maps fill only the cells
+// no fixed map knows (pipeline/composite.hpp). Throws fleetmerge::Error for
 // a non-finite pose, a `fixed` list of another length, or a reference that is not the first
 // fixed map.
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,

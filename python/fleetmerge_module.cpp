@@ -161,7 +161,8 @@ PYBIND11_MODULE(_fleetmerge, m) {
       "An occupancy grid as nav_msgs/OccupancyGrid: data is int8, height x width, -1 unknown,\n"
       "0..100 occupancy, row 0 at the origin; resolution in metres per cell; origin (x, y, yaw)\n"
       "of cell (0, 0)'s outer corner. For merge: fixed=True keeps the map at pose (its frame in\n"
-      "the merged frame, exact); initial_pose (x, y, yaw) is a known start pose, with\n"
+      "the merged frame, exact) and every cell it knows in the merged map; initial_pose (x, y, "
+      "yaw) is a known start pose, with\n"
       "initial_pose_sigma (metres, radians; defaults: help(Map.initial_pose_sigma)).")
       .def(py::init([](const py::object& data, const py::object& resolution,
                        const py::object& origin, const std::string& name, const py::object& fixed,

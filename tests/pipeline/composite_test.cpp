@@ -183,6 +183,52 @@ TEST(Composite, ConflictingCellFollowsTheFusionMode) {
   EXPECT_EQ(centre_state(4, FusionMode::kVote), CellState::kFree);
 }
 
+TEST(Composite, FixedMapsAloneDecideTheCellsTheyKnow) {
+  // Two fixed maps (the reference, and one turned and shifted over part of it) and two maps that
+  // move, all rotated against each other, with unknown cells scattered in every map.
+  const OccupancyGrid base =
+      PatternGrid(GridGeometry(0.05, {60, 50}, Pose2(0.013, -0.027, 0.0)), 31, 4);
+  const OccupancyGrid annex = PatternGrid(GridGeometry(0.05, {30, 30}), 32, 0);
+  const OccupancyGrid robot_a = PatternGrid(GridGeometry(0.05, {45, 40}), 33, 0);
+  const OccupancyGrid robot_b = PatternGrid(GridGeometry(0.05, {40, 40}), 34, 0);
+  const std::vector<CompositeInput> inputs = {{&base, Pose2(), true},
+                                              {&robot_a, Pose2(-0.8, -0.6, 0.3)},
+                                              {&annex, Pose2(2.1, 0.7, -0.5), true},
+                                              {&robot_b, Pose2(1.2, 1.5, 2.0)}};
+  for (const FusionMode mode : kAllModes) {
+    SCOPED_TRACE(static_cast<int>(mode));
+    const OccupancyGrid merged = Composite(inputs, 0.05, mode, 2, 0);
+    std::vector<OccupancyGrid> sampled;
+    for (const CompositeInput& input : inputs)
+      sampled.push_back(SampleOnto(input, merged.geometry()));
+    int fixed_cells = 0, fused_otherwise = 0, both_fixed = 0, moving_only = 0;
+    for (int j = 0; j < merged.height(); ++j) {
+      for (int i = 0; i < merged.width(); ++i) {
+        int counts[2][2] = {};  // [fixed][occupied]
+        for (std::size_t k = 0; k < inputs.size(); ++k) {
+          const CellState state = sampled[k].at({i, j});
+          if (state == CellState::kUnknown) continue;
+          ++counts[inputs[k].fixed][state == CellState::kOccupied];
+        }
+        const int fixed_known = counts[1][0] + counts[1][1];
+        const CellState expected = fixed_known > 0 ? Fuse(counts[1][1], counts[1][0], mode)
+                                                   : Fuse(counts[0][1], counts[0][0], mode);
+        ASSERT_EQ(merged.at({i, j}), expected) << "merged cell " << i << ", " << j;
+        fixed_cells += fixed_known > 0;
+        both_fixed += fixed_known == 2;
+        moving_only += fixed_known == 0 && counts[0][0] + counts[0][1] > 0;
+        fused_otherwise += fixed_known > 0 && Fuse(counts[0][1] + counts[1][1],
+                                                   counts[0][0] + counts[1][0], mode) != expected;
+      }
+    }
+    // Not vacuous: cells every kind of case decides, and cells that fusing every map would change.
+    EXPECT_GT(fixed_cells, 1500);
+    EXPECT_GT(both_fixed, 100);
+    EXPECT_GT(moving_only, 500);
+    EXPECT_GT(fused_otherwise, 50);
+  }
+}
+
 TEST(Composite, CellsSeenByNoMapAreUnknown) {
   const OccupancyGrid a(GridGeometry(0.1, {4, 4}), CellState::kFree);
   const OccupancyGrid b(GridGeometry(0.1, {4, 4}), CellState::kFree);

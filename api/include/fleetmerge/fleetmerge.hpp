@@ -64,9 +64,10 @@ class Map {
   void set_name(std::string name) { name_ = std::move(name); }
   // A fixed (base) map never moves in Merge: `pose` is its map frame in the merged frame, which
   // is its frame (job files' `fixed: true`, `pose: [x, y, yaw]`). The first fixed map is the
-  // reference. set_fixed throws std::invalid_argument, naming the map, for a non-finite pose, a
-  // yaw beyond 2 pi in magnitude (radians, not degrees), or a pose other than the identity with
-  // fixed == false (a job file's `pose` without `fixed: true`).
+  // reference. The merged map keeps every cell a fixed map knows; the others fill the rest.
+  // set_fixed throws std::invalid_argument, naming the map, for a non-finite pose, a yaw beyond 2
+  // pi in magnitude (radians, not degrees), or a pose other than the identity with fixed == false
+  // (a job file's `pose` without `fixed: true`).
   bool fixed() const { return fixed_; }
   const Pose2D& pose() const { return pose_; }
   void set_fixed(bool fixed, Pose2D pose = {});
