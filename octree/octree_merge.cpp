@@ -10,8 +10,8 @@ namespace {
 
 // Adds one input to `out`: for every leaf of the input, the output voxels whose centres fall in
 // the leaf's moved cube [c - s/2, c + s/2) (half-open, so neighbouring leaves never both claim a
-// voxel) get the leaf's log-odds.
-void AddTree(const OctreeInput& input, octomap::OcTree& out) {
+// voxel) get the leaf's log-odds; the voxels `kept` holds (the fixed trees') are left as they are.
+void AddTree(const OctreeInput& input, octomap::OcTree& out, const octomap::OcTree* kept) {
   const octomap::OcTree& tree = *input.tree;
   const Pose2& T = input.T_merged_tree.T_xy;
   const Pose2 T_tree_merged = T.inverse();
@@ -42,9 +42,10 @@ void AddTree(const OctreeInput& input, octomap::OcTree& out) {
         const Eigen::Vector2d d = T_tree_merged * p_merged - c;  // in the input leaf's frame
         if (d.x() < -half || d.x() >= half || d.y() < -half || d.y() >= half) continue;
         for (int k = k0; k < k1; ++k) {
-          out.updateNode(
-              octomap::OcTreeKey(octomap::key_type(i), octomap::key_type(j), octomap::key_type(k)),
-              log_odds, /*lazy_eval=*/true);
+          const octomap::OcTreeKey key{octomap::key_type(i), octomap::key_type(j),
+                                       octomap::key_type(k)};
+          if (kept != nullptr && kept->search(key) != nullptr) continue;
+          out.updateNode(key, log_odds, /*lazy_eval=*/true);
         }
       }
     }
@@ -57,10 +58,18 @@ std::unique_ptr<octomap::OcTree> MergeOctrees(const std::vector<OctreeInput>& in
                                               double resolution_m) {
   if (inputs.empty()) throw Error("merging octrees needs at least one octree");
   if (!(resolution_m > 0.0)) throw Error("the merged octree's resolution must be > 0");
-  auto out = std::make_unique<octomap::OcTree>(resolution_m);
   for (const OctreeInput& input : inputs) {
     if (input.tree == nullptr) throw Error("merging octrees: a null octree");
-    AddTree(input, *out);
+  }
+  auto out = std::make_unique<octomap::OcTree>(resolution_m);
+  for (const OctreeInput& input : inputs) {
+    if (input.fixed) AddTree(input, *out, nullptr);
+  }
+  // The fixed trees' voxels, which the others must not change (a copy: the others add voxels).
+  std::unique_ptr<const octomap::OcTree> kept;
+  if (out->size() > 0) kept = std::make_unique<const octomap::OcTree>(*out);
+  for (const OctreeInput& input : inputs) {
+    if (!input.fixed) AddTree(input, *out, kept.get());
   }
   // Lazy updates leave inner nodes stale; OctoMap's own pass fixes them, then merges identical
   // children (a compact tree, as OctoMap would hold after the same updates made eagerly).

@@ -1,6 +1,8 @@
 // The merged octree of a component: every input octree moved by its pose (x, y, yaw from the 2-D
 // pipeline, z from the floor heights) into the component's frame and fused with OctoMap's own
-// update rule (log-odds added, clamped: OccupancyOcTreeBase::updateNode).
+// update rule (log-odds added, clamped: OccupancyOcTreeBase::updateNode). Fixed inputs (a site's
+// base octree) are kept as the 2-D merged map keeps a fixed map (pipeline/composite.hpp): a voxel
+// that a fixed tree knows is fused from the fixed trees alone, the others fill only the rest.
 //
 // Resampling is by inverse mapping (nearest voxel): each output voxel whose centre falls inside
 // an input leaf receives that leaf's log-odds, once per input. Forward mapping of the input
@@ -28,6 +30,7 @@ struct OctreePose {
 struct OctreeInput {
   const octomap::OcTree* tree = nullptr;
   OctreePose T_merged_tree;
+  bool fixed = false;  // a fixed (base) map's tree: the voxels it knows are kept
 };
 
 // Throws fleetmerge::Error for no input, a null tree or resolution_m <= 0.

@@ -10,6 +10,7 @@
 #include "io/octree_io.hpp"
 #include "octree/octree_merge.hpp"
 #include "octree/octree_projection.hpp"
+#include "pipeline/placed_by.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -77,7 +78,9 @@ OctreeOutputs WriteMergedOctrees(const FleetResult& result, const std::vector<Jo
     double resolution_m = 0.0;
     for (int m : component.maps) {
       if (!octrees[m].tree) continue;
-      inputs.push_back({octrees[m].tree.get(), {result.T_component_map[m], *out.z_m[m]}});
+      inputs.push_back({octrees[m].tree.get(),
+                        {result.T_component_map[m], *out.z_m[m]},
+                        result.placed_by[m] == PlacedBy::kFixed});
       const double r = octrees[m].tree->getResolution();
       resolution_m = resolution_m > 0.0 ? std::min(resolution_m, r) : r;  // the finest
     }

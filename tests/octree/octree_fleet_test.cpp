@@ -203,6 +203,42 @@ TEST(OctreeFleet, TwoOctreesMergeToTheirTruePosesAndOneBuilding) {
   EXPECT_EQ(true_poses, 5);
 }
 
+// A fixed octree (a site's 3-D map) keeps every voxel in the merged .bt as it is, also where the
+// robot's octree saw the same walls (fused, their log-odds would add up); the robot fills the rest.
+TEST(OctreeFleet, AFixedOctreeKeepsItsVoxelsInTheMergedOctree) {
+  const fs::path dir = testing::MakeTempDir("octree_fleet_fixed");
+  const Fleet3d f = MakeFleet(1);
+  const auto site = PartOctree(f, 0);
+  const auto robot = PartOctree(f, 1);
+  SaveOctree(*site, dir / "site.bt");
+  SaveOctree(*robot, dir / "robot.bt");
+  const auto jobs =
+      WriteJobFile(dir, "maps:\n  - {path: site.bt, fixed: true}\n  - robot.bt\noutput: out\n");
+  std::string messages;
+  ASSERT_EQ(RunMergeJobs(jobs, &messages), 0) << messages;
+  const json report = ReadJson(dir / "out/report.json");
+  ASSERT_EQ(report["components"].size(), 1u) << report.dump(1);
+  ExpectPosesMatchTruth(f, report, /*has_z_for_all=*/true);
+  const auto merged = LoadOctree(dir / "out/merged_0.bt");
+  ASSERT_DOUBLE_EQ(merged->getResolution(), site->getResolution());
+  // The robot's voxels in the merged frame, to count the site's voxels it saw too.
+  const Pose2 T_robot_merged = PoseOf(report["maps"][1]).inverse();
+  const double robot_z_m = report["maps"][1]["pose"]["z"].get<double>();
+  int kept = 0, robot_too = 0;
+  for (auto it = site->begin_leafs(); it != site->end_leafs(); ++it) {
+    const octomap::point3d p = it.getCoordinate();
+    const octomap::OcTreeNode* node = merged->search(p);
+    ASSERT_NE(node, nullptr) << p;
+    ASSERT_FLOAT_EQ(node->getLogOdds(), it->getLogOdds()) << p;
+    ++kept;
+    const Eigen::Vector2d q = T_robot_merged * Eigen::Vector2d(p.x(), p.y());
+    robot_too += robot->search(q.x(), q.y(), p.z() - robot_z_m) != nullptr;
+  }
+  EXPECT_GT(kept, 1000);
+  EXPECT_GT(robot_too, 1000);               // not vacuous: the two octrees overlap
+  EXPECT_GT(merged->size(), site->size());  // and the robot's own voxels were added
+}
+
 TEST(OctreeFleet, MixedJobOfA2dMapAndAnOctreeOfOneBuilding) {
   const fs::path dir = testing::MakeTempDir("octree_fleet_mixed");
   const Fleet3d f = MakeFleet(1);

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "core/error.hpp"
 
@@ -96,6 +97,46 @@ TEST(OctreeMerge, OverlapFusesByClampedLogOddsSum) {
     both += na != nullptr && nb != nullptr;
   }
   EXPECT_GT(both, 300);
+}
+
+// A fixed tree (a site's base) keeps every voxel it knows, whatever the other trees say there;
+// the others are fused as before where no fixed tree knows the voxel. Order does not matter.
+TEST(OctreeMerge, AFixedTreeKeepsTheVoxelsItKnows) {
+  const octomap::OcTree base = RandomTree(6, 0.1), a = RandomTree(7, 0.1), b = RandomTree(8, 0.1);
+  const OctreePose T_a{Pose2(0.3, -0.2, 0.4), 0.1};  // partly over the base, partly beside it
+  for (const bool base_first : {true, false}) {
+    std::vector<OctreeInput> inputs = {{&a, T_a}, {&b, {}}};
+    inputs.insert(base_first ? inputs.begin() : inputs.end(), {&base, {}, true});
+    const auto merged = MergeOctrees(inputs, 0.1);
+    const auto others = MergeOctrees({{&a, T_a}, {&b, {}}}, 0.1);  // the moving trees alone
+    int kept = 0, others_differ = 0, filled = 0;
+    for (auto it = merged->begin_leafs(); it != merged->end_leafs(); ++it) {
+      if (it.getDepth() != merged->getTreeDepth()) continue;  // pruned: its centre is no voxel's
+      const octomap::point3d p = it.getCoordinate();
+      const octomap::OcTreeNode* in_base = base.search(p);
+      const octomap::OcTreeNode* in_others = others->search(p);
+      ASSERT_TRUE(in_base != nullptr || in_others != nullptr) << p;
+      if (in_base != nullptr) {
+        ASSERT_FLOAT_EQ(it->getLogOdds(), in_base->getLogOdds()) << p;
+        ++kept;
+        if (in_others == nullptr) continue;
+        // Fusing the base with the others would have changed the voxel.
+        others_differ += std::clamp(in_base->getLogOdds() + in_others->getLogOdds(),
+                                    merged->getClampingThresMinLog(),
+                                    merged->getClampingThresMaxLog()) != in_base->getLogOdds();
+      } else {
+        ASSERT_NEAR(it->getLogOdds(), in_others->getLogOdds(), 1e-5) << p;
+        ++filled;
+      }
+    }
+    EXPECT_GT(kept, 500);
+    EXPECT_GT(others_differ, 100);  // not vacuous
+    EXPECT_GT(filled, 300);
+    // Every voxel of either kind is in the merged tree: the base's and the others' outside it.
+    for (auto it = base.begin_leafs(); it != base.end_leafs(); ++it) {
+      ASSERT_NE(merged->search(it.getCoordinate()), nullptr) << it.getCoordinate();
+    }
+  }
 }
 
 TEST(OctreeMerge, RefusesNoInput) {
