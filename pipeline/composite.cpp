@@ -302,8 +302,8 @@ OccupancyGrid Composite(const std::vector<CompositeInput>& inputs, double resolu
       const std::uint16_t* fixed_occupied_row = fixed_occupied_count.ptr<std::uint16_t>(j - band.y);
       const std::uint16_t* fixed_free_row = fixed_free_count.ptr<std::uint16_t>(j - band.y);
       for (int i = 0; i < size.width; ++i) {
-        if (fixed_occupied_row[i] == 0 && fixed_free_row[i] == 0)
-          continue;  // no fixed map knows it
+        // Where no fixed map knows the cell, the moving maps' fusion above stands.
+        if (fixed_occupied_row[i] == 0 && fixed_free_row[i] == 0) continue;
         merged_row[i] =
             static_cast<std::uint8_t>(Fuse(fixed_occupied_row[i], fixed_free_row[i], mode));
       }
