@@ -7,9 +7,12 @@
 # with the truth (its pose in the building composed with the base's pose): the yaw error and the
 # displacement of the centre of its map, in its cells.
 # Each case also holds a robot of the next building in the list, which must be left out.
+# The base's known cells must come out unchanged in the merged map: they are compared with the
+# merged map of a job of the base alone (fleetmerge writes a fixed map alone as it reads it, on
+# its lattice moved by its pose).
 # Prints one line per case (robots, placed right, placed wrong, left out, worst yaw and
 # displacement of the placed ones, whether the base kept its pose exactly, whether the other
-# building's robot was placed: 0 or 1) and the totals.
+# building's robot was placed: 0 or 1, the base's known cells changed) and the totals.
 # Needs a build (scripts/build.sh) and ../shared/data/maps; about 3 minutes on 2 cores.
 # Usage: scripts/fixed_base_accuracy.sh [OUT_DIR] [ROBOTS]   (default out/fixed_base, 5)
 # FIXED_BASE_SEEDS replaces the seed list (default 1 to 10).
@@ -39,10 +42,15 @@ job = {"name": "fixed_base",
                [m["file"] for m in truth["maps"]],
        "output": "merged_fixed"}
 yaml.safe_dump(job, open(f"{case}/job_fixed.yaml", "w"))
+# The base alone: its merged map is its cells as fleetmerge reads them, where its pose puts them.
+job.update(maps=job["maps"][:1], output="base_alone")
+yaml.safe_dump(job, open(f"{case}/job_base_alone.yaml", "w"))
 PY
     "$fleetmerge" merge --quiet "$dir/job_fixed.yaml" >/dev/null
+    "$fleetmerge" merge --quiet "$dir/job_base_alone.yaml" >/dev/null
     /usr/bin/python3 - "$dir" "${building}_$seed" <<'PY'
-import json, math, sys, yaml
+import json, math, os, sys, yaml
+import numpy as np
 case, name = sys.argv[1], sys.argv[2]
 truth = yaml.safe_load(open(f"{case}/truth.yaml"))
 report = json.load(open(f"{case}/merged_fixed/report.json"))
@@ -88,11 +96,42 @@ for m in truth["maps"]:
     else:
         wrong += 1
 exact = (base["pose"]["x"], base["pose"]["y"], base["pose"]["yaw"]) == (bx, by, byaw)
+
+def load_merged(yaml_path):  # a merged map: its YAML and cells (trinary PGM, row 0 at the top)
+    meta = yaml.safe_load(open(yaml_path))
+    data = open(os.path.join(os.path.dirname(yaml_path), meta["image"]), "rb").read()
+    width, height = (int(v) for v in data.split(maxsplit=3)[1:3])  # P5 W H 255: no comments
+    return meta, np.frombuffer(data[len(data) - width * height:], np.uint8).reshape(height, width)
+
+def cells_changed():
+    # The base's known cells (from its merged map alone) against the job's merged map: both
+    # lattices are the base's moved by its pose, so one whole-cell offset maps one onto the other.
+    component = [c for c in report["components"] if "base" in c["maps"]][0]
+    alone_meta, alone = load_merged(f"{case}/base_alone/merged_0.yaml")
+    meta, merged = load_merged(f"{case}/merged_fixed/{component['merged_map']}")
+    r, yaw = meta["resolution"], meta["origin"][2]
+    if alone_meta["resolution"] != r or abs(alone_meta["origin"][2] - yaw) > 1e-12:
+        return int((alone != 205).sum())
+    d = np.array(alone_meta["origin"][:2]) - np.array(meta["origin"][:2])
+    c, s = math.cos(yaw), math.sin(yaw)
+    offset = np.array([c * d[0] + s * d[1], -s * d[0] + c * d[1]]) / r  # in merged cells
+    if np.abs(offset - np.round(offset)).max() > 1e-6:
+        return int((alone != 205).sum())
+    dx, dy = (int(v) for v in np.round(offset))
+    rows, cols = np.nonzero(alone != 205)
+    merged_rows = merged.shape[0] - 1 - (alone.shape[0] - 1 - rows + dy)
+    merged_cols = cols + dx
+    inside = ((merged_rows >= 0) & (merged_rows < merged.shape[0]) & (merged_cols >= 0) &
+              (merged_cols < merged.shape[1]))
+    same = merged[merged_rows[inside], merged_cols[inside]] == alone[rows[inside], cols[inside]]
+    return int((~inside).sum() + (~same).sum())
+
 print(name, robots, right, wrong, left_out, f"{worst_yaw_deg:.3f}", f"{worst_cells:.2f}",
-      "base-exact" if exact else "BASE-MOVED", foreign_placed)
+      "base-exact" if exact else "BASE-MOVED", foreign_placed, cells_changed())
 PY
   done
 done | tee "$out/summary.txt"
-awk '{n += $2; r += $3; w += $4; l += $5; moved += ($8 != "base-exact"); f += $9; cases++}
-     END {printf "fixed base: %d robots; within 1 deg and 3 cells %d (%.1f %%), placed wrong %d, left out %d; bases moved %d; robots of another building placed %d of %d\n",
-          n, r, 100 * r / n, w, l, moved, f, cases}' "$out/summary.txt"
+awk '{n += $2; r += $3; w += $4; l += $5; moved += ($8 != "base-exact"); f += $9; changed += $10
+      cases++}
+     END {printf "fixed base: %d robots; within 1 deg and 3 cells %d (%.1f %%), placed wrong %d, left out %d; bases moved %d; base cells changed %d; robots of another building placed %d of %d\n",
+          n, r, 100 * r / n, w, l, moved, changed, f, cases}' "$out/summary.txt"
