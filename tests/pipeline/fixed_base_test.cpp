@@ -12,7 +12,6 @@
 #include <cstdio>
 #include <opencv2/imgproc.hpp>
 #include <optional>
-#include <utility>
 #include <vector>
 
 #include "core/error.hpp"
@@ -118,13 +117,16 @@ void ExpectBaseCellForCell(const BaseCase& c, const FleetResult& result) {
     const OccupancyGrid at_merged = ResampleToResolution(robot, merged.geometry().resolution_m());
     others.push_back(SampleOnto({&at_merged, result.T_component_map[m]}, merged.geometry()));
   }
-  const auto robots_fused = [&](const Eigen::Array2i& cell) {
-    int occupied = 0, free = 0;
+  struct Seen {
+    int occupied = 0, free = 0;  // robots that see the cell so
+  };
+  const auto robots_at = [&](const Eigen::Array2i& cell) {
+    Seen seen;
     for (const OccupancyGrid& sampled : others) {
-      occupied += sampled.at(cell) == CellState::kOccupied;
-      free += sampled.at(cell) == CellState::kFree;
+      seen.occupied += sampled.at(cell) == CellState::kOccupied;
+      seen.free += sampled.at(cell) == CellState::kFree;
     }
-    return std::make_pair(Fuse(occupied, free, FusionMode::kLogOdds), occupied + free);
+    return seen;
   };
   const OccupancyGrid base_on_merged =
       SampleOnto({&c.base, kT_merged_base}, merged.geometry());  // to find the robots' own cells
@@ -137,28 +139,26 @@ void ExpectBaseCellForCell(const BaseCase& c, const FleetResult& result) {
       ASSERT_TRUE(merged.geometry().Contains(cell));
       ASSERT_LT((merged.geometry().CellCenter(cell) - p).norm(), 1e-6) << i << ", " << j;
       ASSERT_EQ(merged.at(cell), c.base.at({i, j})) << "base cell " << i << ", " << j;
-      const auto [robots, robots_known] = robots_fused(cell);
-      if (robots_known == 0) {
+      const Seen robots = robots_at(cell);
+      if (robots.occupied + robots.free == 0) {
         ++only_base;
         continue;
       }
       ++robots_too;
       // Fusing the base's cell with the robots' would have changed it.
       const int base_occupied = c.base.at({i, j}) == CellState::kOccupied;
-      const CellState all =
-          Fuse(base_occupied + (robots == CellState::kOccupied ? robots_known : 0),
-               1 - base_occupied + (robots == CellState::kFree ? robots_known : 0),
-               FusionMode::kLogOdds);
-      robots_differ += all != c.base.at({i, j});
+      robots_differ += Fuse(robots.occupied + base_occupied, robots.free + 1 - base_occupied,
+                            FusionMode::kLogOdds) != c.base.at({i, j});
     }
   }
   for (int j = 0; j < merged.height(); ++j) {
     for (int i = 0; i < merged.width(); ++i) {
       if (base_on_merged.at({i, j}) != CellState::kUnknown) continue;
-      const auto [robots, robots_known] = robots_fused({i, j});
-      if (robots_known == 0) continue;
+      const Seen robots = robots_at({i, j});
+      if (robots.occupied + robots.free == 0) continue;
       ++robots_only;
-      ASSERT_EQ(merged.at({i, j}), robots) << "merged cell " << i << ", " << j;
+      ASSERT_EQ(merged.at({i, j}), Fuse(robots.occupied, robots.free, FusionMode::kLogOdds))
+          << "merged cell " << i << ", " << j;
     }
   }
   std::printf(
