@@ -458,7 +458,10 @@ FleetGraph SolveFleetGraph(int map_count, std::vector<PairOutcome>& pairs, int r
     if (IsFixed(fixed, m)) {
       placed = PlacedBy::kFixed;
     } else if (component_size[c] == 1) {
-      placed = PlacedBy::kUnmerged;
+      // Alone, a map with a prior is still where its prior puts it in the site frame (the only
+      // map with one, so the site frame is its prior's); a map without one has no frame but its
+      // own.
+      placed = HasPrior(priors, m) ? PlacedBy::kPrior : PlacedBy::kUnmerged;
     } else if (group_of[m] != anchor_of[c]) {
       placed = PlacedBy::kPrior;  // its group's priors place it in the site frame
     } else if (m == graph.component_reference[c]) {

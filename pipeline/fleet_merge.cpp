@@ -370,10 +370,12 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
     for (int m = 0; m < static_cast<int>(maps.size()); ++m) {
       if (graph.component_of[m] == static_cast<int>(c)) component.maps.push_back(m);
     }
-    if (component.maps.size() == 1 && (maps.size() == 1 || IsFixed(fixed, component.maps[0]))) {
-      // A one-map job (even all unknown, or 1 x 1 cell), and a fixed map that no other map
-      // joined: its frame is still the merged frame, and a site's daily job still writes the
-      // site's map. Other components of one map get none: the map file is its own result.
+    if (component.maps.size() == 1 &&
+        (maps.size() == 1 || result.placed_by[component.maps[0]] != PlacedBy::kUnmerged)) {
+      // A one-map job (even all unknown, or 1 x 1 cell), and a fixed map or a map with a prior
+      // that no other map joined: its pose in the site frame is known, and a site's daily job
+      // still writes the site's map. Other components of one map get none: the map file is its
+      // own result.
       PlaceAsItIs(maps, result, component, options);
     } else if (component.maps.size() >= 2) {
       CompositeComponent(maps, result, fixed, component, options);

@@ -2,8 +2,10 @@
 // Hough hypotheses (pipeline/all_pairs.hpp); pairs with a high best omega and enough overlap
 // become omega-weighted pose-graph edges, solved per connected component with cycle checks
 // (pipeline/fleet_graph.hpp); each component of two or more maps is composited into one map, and
-// a fixed map that no map joined is its component's merged map as it is.
-// A map that overlaps no other stays unmerged: never forced in, never dropped.
+// a fixed map that no map joined, or a map that its prior places alone (the only map with one), is
+// its component's merged map as it is, at its pose in the site frame.
+// A map that overlaps no other (and has no fixed pose or prior) stays unmerged: never forced in,
+// never dropped.
 #pragma once
 
 #include <opencv2/core.hpp>

@@ -719,6 +719,49 @@ TEST(PriorPlacedMapInBrowser, IsListedAndRingedWhereItsPosePutsIt) {
   }
 }
 
+// The only map with a start pose, in a wing nobody else saw (intel_lab beside two corridor
+// runs): placed at its prior in a merged map of its own, so the page lists it with the merged
+// maps, "(placed by prior)", and neither among the unmerged maps nor as unmerged in the summary.
+TEST(PriorPlacedMapInBrowser, AMapItsPriorPlacesAloneIsNotUnmerged) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const fs::path maps = *testing::SharedMapsDir();
+  const fs::path dir = testing::MakeTempDir("lone_prior_report_browser");
+  const fs::path out = dir / "out", shots = dir / "shots";
+  const testing::CommandResult merge = testing::Fleetmerge(
+      "merge --quiet --out " + ShellQuote(out) + " " +
+      ShellQuote(maps / "robotis_corridor_run1.yaml") + " " +
+      ShellQuote(maps / "robotis_corridor_run2.yaml") + " " + ShellQuote(maps / "intel_lab.yaml") +
+      " --initial-pose intel_lab=60,5,0.3");
+  ASSERT_EQ(merge.exit_code, 0) << merge.both();
+  const json report = json::parse(testing::ReadFile(out / "report.json"));
+  ASSERT_EQ(report.at("components").size(), 2u) << report.at("components").dump();
+  const json& lab = report.at("maps").at(2);
+  ASSERT_EQ(lab.at("placed_by"), "prior") << lab.dump();
+  const int component = lab.at("component");
+
+  const std::optional<fs::path> chromium = Chromium();
+  if (!chromium || !FindProgram({"node"})) {
+    GTEST_SKIP() << "SKIPPED: no browser test: Chromium or node not found; "
+                    "scripts/install_deps.sh installs both";
+  }
+  const DriverRun browser = Drive(*chromium, out, shots, {});
+  ASSERT_TRUE(browser.error.empty()) << browser.error;
+  ExpectNoConsoleErrorAndNothingFetchedOutside(browser.result, out);
+  const json& dom = browser.result.at("dom");
+  EXPECT_TRUE(dom.at("unmerged").empty()) << dom.at("unmerged").dump();
+  const std::string summary = dom.at("summary");
+  EXPECT_NE(summary.find("2 merged map(s)"), std::string::npos) << summary;
+  EXPECT_EQ(summary.find("unmerged"), std::string::npos) << summary;
+  const json* listed = nullptr;
+  for (const json& c : dom.at("components")) {
+    if (c.at("id") == std::to_string(component)) listed = &c;
+  }
+  ASSERT_NE(listed, nullptr) << dom.at("components").dump();
+  ASSERT_EQ(listed->at("legend"), json({"intel_lab"}));
+  const std::string legend = listed->at("legend_text")[0];
+  EXPECT_NE(legend.find("(placed by prior)"), std::string::npos) << legend;
+}
+
 // An octree job's page adds each octree's floor plan with its floor height and z offset. The
 // octrees are the synthetic pair of `fleetmerge example --octree` (no real octree data ships).
 TEST(OctreeReportInBrowser, ShowsEachFloorPlanWithItsZOffset) {

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -365,6 +366,46 @@ TEST_F(MergeCliTest, FixedAndInitialPoseOptionsPlaceTheMaps) {
   EXPECT_EQ(PoseOf(other["initial_pose"]).translation_m(), T_merged_other.translation_m());
   EXPECT_EQ(other["initial_pose_sigma"],
             json({kDefaultPriorTranslationSigmaM, kDefaultPriorYawSigmaRad}));
+}
+
+// The only map with a start pose, overlapping nobody: placed at it in the site frame, which no
+// other map shares (its own component), with the merged map, transform and report of a placed map;
+// the maps without priors are merged as without it.
+TEST_F(MergeCliTest, TheOnlyMapWithAStartPoseIsPlacedAtItAlone) {
+  const fs::path out = testing::MakeTempDir("merge_lone_prior") / "out";
+  const Pose2 T_site_other(3.0, 4.0, 0.1);
+  const auto run = Fleetmerge("merge --out " + ShellQuote(out) + Maps({A(), B(), Other()}) +
+                              " --initial-pose other_building=3,4,0.1");
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  EXPECT_NE(run.out.find("other_building placed by its initial_pose (no accepted pair links it to "
+                         "another map)"),
+            std::string::npos)
+      << run.out;
+  const json report = ReadJson(out / "report.json");
+  ExpectDocumentedNames(report);
+  const json other = MapNamed(report, "other_building");
+  EXPECT_EQ(other["placed_by"], "prior");
+  EXPECT_EQ(other["pose"], json({{"x", 3.0}, {"y", 4.0}, {"yaw", 0.1}})) << "exactly its prior";
+  EXPECT_EQ(MapNamed(report, "robot_a")["placed_by"], "reference");
+  EXPECT_EQ(MapNamed(report, "robot_b")["placed_by"], "pairs");
+  ExpectNear(PoseOf(MapNamed(report, "robot_b")["pose"]), T_a_b_, "robot_b");
+  EXPECT_EQ(ComponentOf(report, "robot_a")["maps"], json({"robot_a", "robot_b"}));
+  const json site = ComponentOf(report, "other_building");
+  EXPECT_EQ(site["maps"], json({"other_building"}));
+  ASSERT_TRUE(site.contains("merged_map")) << site;
+  // Its merged map is the map's own cells, where its prior puts them.
+  const LoadedMap input = LoadMap(Other());
+  const LoadedMap merged = LoadMap(out / site["merged_map"].get<std::string>());
+  EXPECT_EQ(cv::countNonZero(merged.grid.cells() != input.grid.cells()), 0);
+  const Pose2 expected = T_site_other * input.grid.geometry().T_map_grid();
+  ExpectNear(merged.grid.geometry().T_map_grid(), expected, "merged map's origin");
+  // A transform from the site component's frame (map_1: the second component) to its map frame.
+  const std::string launch = ReadFile(out / "transforms.launch");
+  EXPECT_NE(launch.find("name=\"fleetmerge_tf_other_building\" args=\"3 4 0 0.1 0 0 map_1 "
+                        "other_building/map\""),
+            std::string::npos)
+      << launch;
+  EXPECT_EQ(launch.find("was not merged"), std::string::npos) << launch;
 }
 
 TEST_F(MergeCliTest, RepeatableOptionsBeforeTheMapsTakeOneValueEach) {

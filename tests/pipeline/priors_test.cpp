@@ -299,6 +299,60 @@ TEST(Priors, AReferenceThatOverlapsNobodyIsPlacedByItsPrior) {
   EXPECT_NEAR(placed.y_m(), priors[0]->T_site_map.y_m(), 1e-6);
 }
 
+// The only map with a prior overlaps nobody (the robot of the other building; the building's
+// robots have none): it is placed at its prior all the same, as its own component in the site
+// frame with its cells as its merged map, and the robots without priors come out as without it.
+// So is the map of a one-map job.
+TEST(Priors, TheOnlyMapWithAPriorIsPlacedByItAlone) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const SiteCase c = SimulateSite(4, 1, true);
+  const int lone = static_cast<int>(c.sim.maps.size()) - 1;
+  std::vector<const OccupancyGrid*> maps;
+  for (const OccupancyGrid& map : c.sim.maps) maps.push_back(&map);
+  PosePriors priors(maps.size());
+  priors[lone] = SlightlyOffPrior(c, lone);
+  const FleetResult without = MergeFleet(maps, 0, FixedPoses{}, FleetOptions{});
+  const FleetResult with = MergeFleet(maps, 0, FixedPoses{}, priors, FleetOptions{});
+  ASSERT_EQ(without.placed_by[lone], PlacedBy::kUnmerged);
+  EXPECT_EQ(with.placed_by[lone], PlacedBy::kPrior);
+  const FleetComponent& site = with.components[with.component_of[lone]];
+  EXPECT_EQ(site.maps, std::vector<int>{lone});
+  const Pose2& prior = priors[lone]->T_site_map;
+  const auto expect_at_prior = [&](const FleetResult& result, const OccupancyGrid& map, int m) {
+    const Pose2& placed = result.T_component_map[m];
+    EXPECT_NEAR(placed.x_m(), prior.x_m(), 1e-9);
+    EXPECT_NEAR(placed.y_m(), prior.y_m(), 1e-9);
+    EXPECT_NEAR(WrapAngle(placed.yaw_rad() - prior.yaw_rad()), 0.0, 1e-12);
+    const FleetComponent& component = result.components[result.component_of[m]];
+    ASSERT_TRUE(component.merged.has_value()) << "the site's merged map: the map where it is";
+    EXPECT_EQ(cv::countNonZero(component.merged->cells() != map.cells()), 0);
+    const Pose2 T_grid = component.merged->geometry().T_map_grid();
+    const Pose2 expected = prior * map.geometry().T_map_grid();
+    EXPECT_NEAR((T_grid.translation_m() - expected.translation_m()).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(WrapAngle(T_grid.yaw_rad() - expected.yaw_rad()), 0.0, 1e-12);
+  };
+  expect_at_prior(with, *maps[lone], lone);
+  // The robots without priors: the same components, poses, placements and merged maps.
+  for (int r = 0; r < lone; ++r) {
+    EXPECT_EQ(with.placed_by[r], without.placed_by[r]) << "robot" << r + 1;
+    EXPECT_EQ(with.component_of[r] == with.component_of[0],
+              without.component_of[r] == without.component_of[0])
+        << "robot" << r + 1;
+    const Pose2 d = without.T_component_map[r].inverse() * with.T_component_map[r];
+    EXPECT_NEAR(d.translation_m().norm(), 0.0, 1e-9) << "robot" << r + 1;
+    EXPECT_NEAR(d.yaw_rad(), 0.0, 1e-12) << "robot" << r + 1;
+  }
+  const FleetComponent& robots_with = with.components[with.component_of[0]];
+  const FleetComponent& robots_without = without.components[without.component_of[0]];
+  ASSERT_TRUE(robots_with.merged && robots_without.merged);
+  EXPECT_EQ(robots_with.maps, robots_without.maps);
+  EXPECT_EQ(cv::countNonZero(robots_with.merged->cells() != robots_without.merged->cells()), 0);
+
+  const FleetResult one = MergeFleet({maps[lone]}, 0, FixedPoses{}, {priors[lone]}, FleetOptions{});
+  EXPECT_EQ(one.placed_by[0], PlacedBy::kPrior);
+  expect_at_prior(one, *maps[lone], 0);
+}
+
 // configs/site_with_priors.yaml in memory: run1 of the ROBOTIS corridor fixed at (10, 5, 0), runs
 // 2-4 with priors; run4 shares too little with any map for a pair.
 struct CorridorSite {
