@@ -5,9 +5,9 @@
 //   transforms.launch       ROS 1 (XML; `roslaunch transforms.launch`)
 // Frames: the parent is job.tf_parent_frame ("map") for component 0 and
 // "<tf_parent_frame>_<c>" for component c > 0; the child is job.tf_child_frame with "{name}"
-// replaced by the map's name ("robot1/map"). Maps left unmerged (a component of one map, not fixed and
-// without a prior, in a job of several) get no transform: the files say so in a comment. Planar poses: z, roll,
-// pitch 0.
+// replaced by the map's name ("robot1/map"). Maps left unmerged (a component of one map, not
+// fixed and without a prior, in a job of several) get no transform: the files say so in a
+// comment. Planar poses: z, roll, pitch 0.
 #pragma once
 
 #include <string>
