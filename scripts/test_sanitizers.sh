@@ -39,6 +39,14 @@ same_paths_on_more_data+='|^FixedBase\.[A-Za-z]*SiteOfFourBuildings'
 # the site-frame node; Api.AMapThatPairsWithNoneIsPlacedAtItsInitialPose the placement by a prior.
 # The other three rerun that code on more robots (about 65 s of CPU under ASan).
 same_paths_on_more_data+='|^Priors\.(SlightlyOff|WithoutAFixedMap|ARobotThatOverlapsNobody)'
+# The only map with a prior placed alone: MergeCliTest.TheOnlyMapWithAStartPoseIsPlacedAtItAlone
+# runs that placement and its merged map on small maps; the Priors test reruns it on 5 simulated
+# robots (about 17 s under ASan).
+same_paths_on_more_data+='|^Priors\.TheOnlyMapWithAPriorIsPlacedByItAlone'
+# report.html in Chromium: what it checks is the page's script, which no sanitizer sees; the
+# merges that write its result sets (four_robots, site_with_priors, a pair, octrees) run in the
+# CLI, report and octree tests here (about 41 s under ASan).
+same_paths_on_more_data+='|^report_browser_test$'
 # Command lines and output streams, not memory: CliTest.UsageErrorsExitTwo starts the executable
 # 14 times (exit codes) and MergeCliOctrees.QuietMergeOfOctreesPrintsNothingOnStderr checks
 # stderr (the octree merge runs in OctreeFleet.*); the cache's size bound on 276 pairs
