@@ -162,9 +162,9 @@ void PlaceAsItIs(const std::vector<const OccupancyGrid*>& maps, const FleetResul
 // The component's merged map, on its reference map's cells: at the job's resolution when the
 // job sets one, else at the reference's own. Users navigate in the reference robot's map, so
 // where only that map knows a cell the merged map holds that very cell; a fixed (base) map is
-// the reference, and every cell it knows is kept (Composite's fixed inputs). Inputs finer than the
-// merged cells are coarsened from the original maps first (ResampleToResolution keeps one-cell
-// walls that a nearest-cell lookup would drop).
+// the reference, and every cell it knows is kept (Composite's fixed inputs). Inputs finer than
+// the merged cells are coarsened from the original maps first (ResampleToResolution keeps
+// one-cell walls that a nearest-cell lookup would drop).
 void CompositeComponent(const std::vector<const OccupancyGrid*>& maps, const FleetResult& result,
                         const FixedPoses& fixed, FleetComponent& component,
                         const FleetOptions& options) {

@@ -58,9 +58,8 @@ FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int refere
 // map that moves (empty: none is fixed). Fixed maps never move; the merged frame is theirs;
 // `reference` must be the first of them, whose cell lattice (moved by its pose) the merged map
 // keeps; every cell a fixed map knows comes out unchanged, and the other maps fill only the cells
-// no fixed map knows (pipeline/composite.hpp). Throws fleetmerge::Error for
-// a non-finite pose, a `fixed` list of another length, or a reference that is not the first
-// fixed map.
+// no fixed map knows (pipeline/composite.hpp). Throws fleetmerge::Error for a non-finite pose, a
+// `fixed` list of another length, or a reference that is not the first fixed map.
 FleetResult MergeFleet(const std::vector<const OccupancyGrid*>& maps, int reference,
                        const FixedPoses& fixed, const FleetOptions& options,
                        const ProgressFn& progress = {}, PairCache* cache = nullptr);

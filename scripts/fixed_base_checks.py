@@ -34,8 +34,8 @@ def centre_error(reported, true, map_yaml):
     the centre of its image."""
     meta, cells = load_merged(map_yaml)
     r = meta["resolution"]
-    centre = (meta["origin"][0] + cells.shape[1] * r / 2, meta["origin"][1] + cells.shape[0] * r / 2,
-              0.0)
+    centre = (meta["origin"][0] + cells.shape[1] * r / 2,
+              meta["origin"][1] + cells.shape[0] * r / 2, 0.0)
     at_reported, at_true = compose(reported, centre), compose(true, centre)
     cells_off = math.hypot(at_reported[0] - at_true[0], at_reported[1] - at_true[1]) / r
     yaw = reported[2] - true[2]
