@@ -7,9 +7,9 @@
 #include <ostream>
 
 #include "core/error.hpp"
+#include "core/parallel.hpp"
 #include "io/map_io.hpp"
 #include "io/simulated_case_file.hpp"
-#include "core/parallel.hpp"
 #include "sim/simulation.hpp"
 
 namespace fleetmerge {
@@ -24,6 +24,12 @@ void PrintCase(const SimulatedCase& simulated, const WrittenCase& written, doubl
   out << std::fixed << std::setprecision(3);
   out << "simulated " << simulated.maps.size() << " robots in " << std::setprecision(0)
       << elapsed_ms << " ms" << std::setprecision(3) << "\n";
+  if (simulated.base) {
+    const OccupancyGrid& map = simulated.base->map;
+    out << "  " << written.base_yaml.string() << ": building " << simulated.base->truth.building
+        << ", its own map, " << map.width() << " x " << map.height() << " cells of "
+        << simulated.base->truth.resolution_m << " m, fixed at the identity\n";
+  }
   for (std::size_t k = 0; k < simulated.maps.size(); ++k) {
     const TruthMap& t = simulated.truth.maps[k];
     const OccupancyGrid& map = simulated.maps[k];
@@ -33,7 +39,12 @@ void PrintCase(const SimulatedCase& simulated, const WrittenCase& written, doubl
         << " m, yaw " << t.T_building_map.yaw_rad() * 180.0 / M_PI << " deg\n";
   }
   out << "true overlaps (building cells seen by both, share of the smaller map):\n";
-  for (const TruthOverlap& o : simulated.truth.overlaps) {
+  std::vector<TruthOverlap> overlaps = simulated.truth.overlaps;
+  if (simulated.base) {
+    overlaps.insert(overlaps.begin(), simulated.base->overlaps.begin(),
+                    simulated.base->overlaps.end());
+  }
+  for (const TruthOverlap& o : overlaps) {
     out << "  " << o.a << " - " << o.b << ": " << o.cells << " cells, " << std::setprecision(2)
         << o.share << std::setprecision(3) << "\n";
   }
@@ -82,6 +93,9 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommand& c) {
       ->delimiter(',')
       ->check(CLI::Range(0.005, 1.0))
       ->capture_default_str();
+  sim->add_flag("--fixed-base", o.fixed_base,
+                "the building's own map joins the case as a fixed base map (base.yaml, first in "
+                "job.yaml and truth.yaml), as in a site job");
   sim->add_flag("--little-overlap", o.little_overlap,
                 "robots start far apart and each explores only its own part of the building");
   auto* foreign = sim->add_option("--foreign", c.foreign_yaml,

@@ -16,6 +16,11 @@ std::string JobYaml(const SimulatedCase& simulated) {
   out << YAML::BeginMap;
   out << YAML::Key << "name" << YAML::Value << "simulated";
   out << YAML::Key << "maps" << YAML::Value << YAML::BeginSeq;
+  if (simulated.base) {
+    out << YAML::BeginMap << YAML::Key << "path" << YAML::Value
+        << simulated.base->truth.file.string() << YAML::Key << "fixed" << YAML::Value << true
+        << YAML::EndMap;
+  }
   for (const auto& name : simulated.names) out << name + ".yaml";
   out << YAML::EndSeq;
   out << YAML::Key << "output" << YAML::Value << "merged";
@@ -42,13 +47,27 @@ WrittenCase WriteSimulatedCase(const SimulatedCase& simulated, const std::filesy
     CheckNotAnInput(written.map_yamls.back(), protected_inputs);
     CheckNotAnInput(dir / (name + ".pgm"), protected_inputs);
   }
+  if (simulated.base) {
+    written.base_yaml = dir / simulated.base->truth.file;
+    CheckNotAnInput(written.base_yaml, protected_inputs);
+    CheckNotAnInput(std::filesystem::path(written.base_yaml).replace_extension(".pgm"),
+                    protected_inputs);
+  }
   CheckNotAnInput(written.truth_yaml, protected_inputs);
   CheckNotAnInput(written.job_yaml, protected_inputs);
 
   for (std::size_t k = 0; k < simulated.maps.size(); ++k) {
     SaveMap(simulated.maps[k], written.map_yamls[k], protected_inputs);
   }
-  SaveTruth(simulated.truth, written.truth_yaml);
+  GroundTruth truth = simulated.truth;
+  if (simulated.base) {
+    // First, so that eval scores each robot (the pair's second map) by its own cells.
+    SaveMap(simulated.base->map, written.base_yaml, protected_inputs);
+    truth.maps.insert(truth.maps.begin(), simulated.base->truth);
+    truth.overlaps.insert(truth.overlaps.begin(), simulated.base->overlaps.begin(),
+                          simulated.base->overlaps.end());
+  }
+  SaveTruth(truth, written.truth_yaml);
   WriteFileAtomically(written.job_yaml, JobYaml(simulated), protected_inputs);
   return written;
 }

@@ -1,6 +1,7 @@
 // A simulated multi-robot case on disk (`fleetmerge simulate`'s output folder): each robot's map
 // (<name>.yaml + <name>.pgm), truth.yaml (io/truth_file.hpp) and job.yaml, a job for
-// `fleetmerge merge` over all the maps writing to `merged/` beside it.
+// `fleetmerge merge` over all the maps writing to `merged/` beside it. A case with a fixed base
+// (io/simulated_case.hpp) also has base.yaml + base.pgm, first in job.yaml and truth.yaml.
 #pragma once
 
 #include <filesystem>
@@ -12,6 +13,7 @@ namespace fleetmerge {
 
 struct WrittenCase {
   std::vector<std::filesystem::path> map_yamls;
+  std::filesystem::path base_yaml;  // empty without a fixed base
   std::filesystem::path truth_yaml;
   std::filesystem::path job_yaml;
 };

@@ -177,6 +177,23 @@ SimulatedCase SimulateFleet(const SimulationBuilding& building, const Simulation
                                        smaller > 0 ? double(cells) / double(smaller) : 0.0});
     }
   }
+  if (options.fixed_base) {
+    // The base's frame is the building's: its known cells are the building's, cell for cell.
+    SimulatedBase base;
+    base.map = building.grid;
+    base.truth = {"base", "base.yaml", building.name, building.grid.geometry().resolution_m(),
+                  Pose2()};
+    const cv::Mat1b base_known = building.grid.cells() != 0;  // CellState::kUnknown is 0
+    const long long base_cells = cv::countNonZero(base_known);
+    for (std::size_t k = 0; k < plans.size(); ++k) {
+      if (plans[k].building != &building) continue;
+      const long long cells = cv::countNonZero(known[k] & base_known);
+      const long long smaller = std::min<long long>(cv::countNonZero(known[k]), base_cells);
+      base.overlaps.push_back({base.truth.name, result.names[k], cells,
+                               smaller > 0 ? double(cells) / double(smaller) : 0.0});
+    }
+    result.base = std::move(base);
+  }
   return result;
 }
 

@@ -44,6 +44,9 @@ struct SimulationOptions {
   // A cell is occupied in a robot's map when at least this share of the beams that reached it
   // ended in it (GMapping's occupancy threshold); reached by none: unknown.
   double occupied_ratio = 0.25;
+  // The building's own map joins the case as a fixed base map (io/simulated_case.hpp), as in a
+  // site job; a synthetic office's as it was generated.
+  bool fixed_base = false;
   int threads = 0;  // robots simulated in parallel (0: all cores); the result does not depend on it
 };
 

@@ -64,6 +64,39 @@ TEST(SimulateCli, ResolutionsForeignBuildingAndLittleOverlap) {
   EXPECT_EQ(truth["overlaps"].size(), 3u);
 }
 
+// `simulate --fixed-base`, merged and evaluated: the base stays at the identity (placed_by
+// "fixed") and `eval` scores every robot against it, all within the coarse tolerance.
+TEST(SimulateCli, AFixedBaseCaseIsEvaluatedAgainstTheBase) {
+  const fs::path dir = testing::MakeTempDir("simulate_cli_base");
+  const auto run = Fleetmerge("simulate " + ShellQuote(dir) + " --robots 3 --seed 2 --fixed-base");
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  EXPECT_NE(run.out.find("base.yaml: building office, its own map"), std::string::npos) << run.out;
+  const auto merge = Fleetmerge("merge --quiet " + ShellQuote(dir / "job.yaml"));
+  ASSERT_EQ(merge.exit_code, 0) << merge.both();
+  std::ifstream in(dir / "merged" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  ASSERT_EQ(report.at("maps").size(), 4u);
+  const nlohmann::json& base = report.at("maps").at(0);
+  EXPECT_EQ(base.at("name"), "base");
+  EXPECT_EQ(base.at("placed_by"), "fixed");
+  for (const char* key : {"x", "y", "yaw"}) EXPECT_EQ(base.at("pose").at(key), 0.0) << key;
+
+  const auto eval = Fleetmerge("eval --json " + ShellQuote(dir / "merged" / "report.json") + " " +
+                               ShellQuote(dir / "truth.yaml"));
+  ASSERT_EQ(eval.exit_code, 0) << eval.both();
+  const nlohmann::json result = nlohmann::json::parse(eval.out);
+  int base_pairs = 0;
+  for (const nlohmann::json& p : result.at("pairs")) {
+    if (p.at("a") != "base") continue;
+    ++base_pairs;
+    EXPECT_TRUE(p.at("scored").get<bool>()) << p;
+    EXPECT_TRUE(p.at("coarse").get<bool>()) << p;
+  }
+  EXPECT_EQ(base_pairs, 3);
+  EXPECT_EQ(result.at("summary").at("coarse_pairs"), result.at("summary").at("scored_pairs"));
+  EXPECT_EQ(result.at("summary").at("false_merges"), 0);
+}
+
 TEST(SimulateCli, BadInputFailsWithAMessage) {
   const fs::path dir = testing::MakeTempDir("simulate_cli_bad");
   const auto missing = Fleetmerge("simulate " + ShellQuote(dir / "out") + " --building " +

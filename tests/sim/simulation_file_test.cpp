@@ -10,6 +10,7 @@
 #include "io/job_file.hpp"
 #include "io/map_io.hpp"
 #include "io/simulated_case_file.hpp"
+#include "io/truth_file.hpp"
 #include "sim/simulation.hpp"
 #include "tests/support/shared_data.hpp"
 
@@ -67,6 +68,61 @@ TEST(WriteSimulatedCase, RoundTripsThroughJobFileTruthAndMaps) {
   ASSERT_EQ(truth["overlaps"].size(), 3u);
   for (std::size_t k = 0; k < 3; ++k) {
     EXPECT_EQ(truth["overlaps"][k]["cells"].as<long long>(), c.truth.overlaps[k].cells);
+  }
+}
+
+// A case with a fixed base (`simulate --fixed-base`): the building's own map is written as
+// base.yaml, cell for cell, and comes first in job.yaml (fixed at the identity) and in
+// truth.yaml (at the identity, with its overlaps first); the robots follow as without a base.
+TEST(WriteSimulatedCase, AFixedBaseComesFirstInTheJobAndTheTruth) {
+  SimulationOptions o;
+  o.robots = 3;
+  o.path_length_m = 20.0;
+  o.fixed_base = true;
+  const SimulationBuilding office = OfficeBuilding(5);
+  const SimulatedCase c = SimulateFleet(office, o, OfficeBuilding(6, "foreign"));
+  ASSERT_TRUE(c.base.has_value());
+  const fs::path dir = testing::MakeTempDir("simulated_case_base") / "case";
+  const WrittenCase written = WriteSimulatedCase(c, dir);
+  EXPECT_EQ(written.base_yaml, dir / "base.yaml");
+
+  const std::vector<Job> jobs = LoadJobFile(written.job_yaml);
+  ASSERT_EQ(jobs.size(), 1u);
+  ASSERT_EQ(jobs[0].maps.size(), 5u);
+  const JobMap& base = jobs[0].maps[0];
+  EXPECT_EQ(base.name, "base");
+  EXPECT_TRUE(base.fixed);
+  EXPECT_EQ(base.T_merged_map.translation_m().norm(), 0.0);
+  EXPECT_EQ(base.T_merged_map.yaw_rad(), 0.0);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(jobs[0].maps[k + 1].name, c.names[k]);
+    EXPECT_FALSE(jobs[0].maps[k + 1].fixed) << c.names[k];
+  }
+  const LoadedMap loaded = LoadMap(base.path);
+  EXPECT_EQ(cv::countNonZero(loaded.grid.cells() != office.grid.cells()), 0);
+  EXPECT_NEAR((loaded.grid.geometry().T_map_grid().translation_m() -
+               office.grid.geometry().T_map_grid().translation_m())
+                  .norm(),
+              0.0, 1e-6);
+
+  const GroundTruth truth = LoadTruth(written.truth_yaml);
+  ASSERT_EQ(truth.maps.size(), 5u);
+  EXPECT_EQ(truth.maps[0].name, "base");
+  EXPECT_EQ(truth.maps[0].file, dir / "base.yaml");
+  EXPECT_EQ(truth.maps[0].building, "office");
+  EXPECT_EQ(truth.maps[0].T_building_map.translation_m().norm(), 0.0);
+  EXPECT_EQ(truth.maps[0].T_building_map.yaw_rad(), 0.0);
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(truth.maps[k + 1].name, c.names[k]);
+    EXPECT_EQ(truth.maps[k + 1].T_building_map.x_m(), c.truth.maps[k].T_building_map.x_m());
+  }
+  // The base overlaps the building's 3 robots, not the foreign one; then the robots' 3 pairs.
+  ASSERT_EQ(truth.overlaps.size(), 6u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(truth.overlaps[k].a, "base");
+    EXPECT_EQ(truth.overlaps[k].b, c.names[k]);
+    EXPECT_EQ(truth.overlaps[k].cells, c.base->overlaps[k].cells);
+    EXPECT_EQ(truth.overlaps[k + 3].cells, c.truth.overlaps[k].cells);
   }
 }
 

@@ -252,6 +252,39 @@ TEST(SimulateFleet, TrueOverlapsEqualABruteForceRecount) {
   }
 }
 
+// SimulationOptions::fixed_base: the building's own map joins the case at the identity, and its
+// true overlap with each robot is what a brute-force recount finds. The robots are the case
+// without a base, bit for bit.
+TEST(SimulateFleet, AFixedBaseOverlapsEachRobotAsABruteForceRecount) {
+  EXPECT_FALSE(NoiseFreeCase().base.has_value()) << "no base unless asked";
+  SimulationOptions options = NoiseFree();
+  options.fixed_base = true;
+  const SimulatedCase c = SimulateFleet(Office(), options);
+  ASSERT_TRUE(c.base.has_value());
+  const SimulatedBase& base = *c.base;
+  const OccupancyGrid& building = Office().grid;
+  EXPECT_EQ(cv::countNonZero(base.map.cells() != building.cells()), 0);
+  EXPECT_EQ(base.truth.name, "base");
+  EXPECT_EQ(base.truth.file, "base.yaml");
+  EXPECT_EQ(base.truth.building, Office().name);
+  EXPECT_EQ(base.truth.T_building_map.translation_m().norm(), 0.0);
+  EXPECT_EQ(base.truth.T_building_map.yaw_rad(), 0.0);
+  ASSERT_EQ(c.maps.size(), NoiseFreeCase().maps.size());
+  ASSERT_EQ(base.overlaps.size(), c.maps.size());
+  for (std::size_t k = 0; k < c.maps.size(); ++k) {
+    EXPECT_EQ(cv::countNonZero(c.maps[k].cells() != NoiseFreeCase().maps[k].cells()), 0);
+    const TruthOverlap& o = base.overlaps[k];
+    EXPECT_EQ(o.a, "base");
+    EXPECT_EQ(o.b, c.names[k]);
+    const long long recount =
+        RecountOverlap(building, building, Pose2(), c.maps[k], c.truth.maps[k].T_building_map);
+    EXPECT_EQ(o.cells, recount) << o.b;
+    // A robot sees only the building: nearly all its known cells are the base's known cells.
+    EXPECT_GT(o.share, 0.95) << o.b;
+    EXPECT_LE(o.share, 1.0) << o.b;
+  }
+}
+
 bool SameCells(const OccupancyGrid& a, const OccupancyGrid& b) {
   return a.cells().size() == b.cells().size() && cv::countNonZero(a.cells() != b.cells()) == 0;
 }
