@@ -15,8 +15,14 @@
 namespace fleetmerge {
 namespace {
 
-SimulationBuilding LoadBuilding(const std::filesystem::path& yaml, const std::string& name) {
-  return {LoadMap(yaml).grid, name, yaml.string()};
+// Adds the building map's YAML and image to `inputs`: the case folder's files never overwrite them
+// (a building map kept in the case folder under a robot's or the base's file name).
+SimulationBuilding LoadBuilding(const std::filesystem::path& yaml, const std::string& name,
+                                std::vector<std::filesystem::path>& inputs) {
+  LoadedMap loaded = LoadMap(yaml);
+  inputs.push_back(yaml);
+  inputs.push_back(loaded.metadata.image_path);
+  return {std::move(loaded.grid), name, yaml.string()};
 }
 
 void PrintCase(const SimulatedCase& simulated, const WrittenCase& written, double elapsed_ms,
@@ -114,15 +120,13 @@ int RunSimulateCommand(const SimulateCommand& c, std::ostream& out) {
   std::vector<std::filesystem::path> inputs;
   SimulationBuilding building;
   if (!c.building_yaml.empty()) {
-    building = LoadBuilding(c.building_yaml, "building");
-    inputs.push_back(c.building_yaml);
+    building = LoadBuilding(c.building_yaml, "building", inputs);
   } else {
     building = OfficeBuilding(c.office_seed.value_or(c.options.seed));
   }
   std::optional<SimulationBuilding> foreign;
   if (!c.foreign_yaml.empty()) {
-    foreign = LoadBuilding(c.foreign_yaml, "foreign");
-    inputs.push_back(c.foreign_yaml);
+    foreign = LoadBuilding(c.foreign_yaml, "foreign", inputs);
   } else if (c.foreign_office_seed) {
     if (c.building_yaml.empty() &&
         *c.foreign_office_seed == c.office_seed.value_or(c.options.seed)) {

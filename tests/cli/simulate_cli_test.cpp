@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "tests/support/files.hpp"
 #include "tests/support/fleetmerge_cli.hpp"
 #include "tests/support/run_command.hpp"
 #include "tests/support/shared_data.hpp"
@@ -95,6 +96,29 @@ TEST(SimulateCli, AFixedBaseCaseIsEvaluatedAgainstTheBase) {
   EXPECT_EQ(base_pairs, 3);
   EXPECT_EQ(result.at("summary").at("coarse_pairs"), result.at("summary").at("scored_pairs"));
   EXPECT_EQ(result.at("summary").at("false_merges"), 0);
+}
+
+// A building map kept in the case folder, whose image has the name of a file the case writes
+// (the base's, or a robot's): simulate refuses before writing anything, and the image is intact.
+TEST(SimulateCli, NeverOverwritesTheBuildingsImage) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const fs::path intel = *testing::SharedMapsDir() / "intel_lab.pgm";
+  for (const std::string image : {"base.pgm", "robot1.pgm"}) {
+    const fs::path dir = testing::MakeTempDir("simulate_cli_image");
+    fs::copy_file(intel, dir / image);
+    testing::WriteFile(dir / "site.yaml", "image: " + image +
+                                              "\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\n"
+                                              "negate: 0\noccupied_thresh: 0.65\n"
+                                              "free_thresh: 0.196\n");
+    const auto run =
+        Fleetmerge("simulate " + ShellQuote(dir) + " --building " + ShellQuote(dir / "site.yaml") +
+                   " --fixed-base --robots 2 --path-length 10");
+    EXPECT_NE(run.exit_code, 0) << image;
+    EXPECT_NE(run.err.find("refusing to overwrite input file"), std::string::npos) << run.both();
+    EXPECT_NE(run.err.find(image), std::string::npos) << run.both();
+    EXPECT_FALSE(fs::exists(dir / "job.yaml")) << image;
+    EXPECT_TRUE(testing::ReadFile(dir / image) == testing::ReadFile(intel)) << image;
+  }
 }
 
 TEST(SimulateCli, BadInputFailsWithAMessage) {
