@@ -15,10 +15,12 @@ namespace fleetmerge {
 namespace fs = std::filesystem;
 
 int RunCutFleetCommand(const CutFleetCommand& command, std::ostream& out) {
-  const OccupancyGrid building = LoadMap(command.map_yaml).grid;
-  const GroundTruth truth = WriteCutFleetCase(building, command.map_yaml.stem().string(),
+  const LoadedMap building = LoadMap(command.map_yaml);
+  // The case's files never overwrite the building map (kept in the case folder as robot1.pgm).
+  const std::vector<fs::path> inputs = {command.map_yaml, building.metadata.image_path};
+  const GroundTruth truth = WriteCutFleetCase(building.grid, command.map_yaml.stem().string(),
                                               command.map_yaml.generic_string(), command.robots,
-                                              command.seed, command.out_dir);
+                                              command.seed, command.out_dir, {}, inputs);
   out << "wrote " << truth.maps.size() << " maps, truth.yaml and job.yaml to "
       << command.out_dir.string() << " (" << truth.overlaps.size()
       << " overlapping pairs); merge with: fleetmerge merge "

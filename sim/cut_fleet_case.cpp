@@ -45,7 +45,15 @@ std::vector<TruthOverlap> TrueOverlaps(const OccupancyGrid& building,
 
 GroundTruth WriteCutFleetCase(const OccupancyGrid& building, const std::string& building_name,
                               const std::string& source, int robots, std::uint32_t seed,
-                              const std::filesystem::path& dir, const CutFleetOptions& options) {
+                              const std::filesystem::path& dir, const CutFleetOptions& options,
+                              const std::vector<std::filesystem::path>& protected_inputs) {
+  for (int k = 0; k < robots; ++k) {
+    const std::string name = "robot" + std::to_string(k + 1);
+    CheckNotAnInput(dir / (name + ".yaml"), protected_inputs);
+    CheckNotAnInput(dir / (name + ".pgm"), protected_inputs);
+  }
+  CheckNotAnInput(dir / "truth.yaml", protected_inputs);
+  CheckNotAnInput(dir / "job.yaml", protected_inputs);
   std::mt19937 rng(seed);
   const GroundTruthFleet fleet = CutFleet(building, robots, rng, options);
   std::filesystem::create_directories(dir);
@@ -57,7 +65,7 @@ GroundTruth WriteCutFleetCase(const OccupancyGrid& building, const std::string& 
                     std::to_string(seed) + ")\nmaps:\n";
   for (int k = 0; k < robots; ++k) {
     const std::string name = "robot" + std::to_string(k + 1);
-    SaveMap(fleet.maps[k], dir / (name + ".yaml"));
+    SaveMap(fleet.maps[k], dir / (name + ".yaml"), protected_inputs);
     names.push_back(name);
     truth.maps.push_back({name, name + ".yaml", building_name,
                           fleet.maps[k].geometry().resolution_m(), fleet.T_building_map[k]});
@@ -66,7 +74,7 @@ GroundTruth WriteCutFleetCase(const OccupancyGrid& building, const std::string& 
   job += "output: merged\n";
   truth.overlaps = TrueOverlaps(building, fleet.maps, names, fleet.T_building_map);
   SaveTruth(truth, dir / "truth.yaml");
-  WriteFileAtomically(dir / "job.yaml", job);
+  WriteFileAtomically(dir / "job.yaml", job, protected_inputs);
   for (TruthMap& map : truth.maps) map.file = dir / map.file;
   return truth;
 }

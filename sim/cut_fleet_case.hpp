@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "core/occupancy_grid.hpp"
 #include "io/truth_file.hpp"
@@ -25,10 +26,11 @@ std::vector<TruthOverlap> TrueOverlaps(const OccupancyGrid& building,
 
 // Cuts `robots` maps from `building` (seeded) and writes the case into `dir` (created).
 // `building_name` and `source` go into truth.yaml. Returns the truth as written (map files
-// resolved against `dir`).
+// resolved against `dir`). Refuses (fleetmerge::Error) to overwrite any of `protected_inputs`
+// (the building map's YAML and image) before writing anything.
 GroundTruth WriteCutFleetCase(const OccupancyGrid& building, const std::string& building_name,
                               const std::string& source, int robots, std::uint32_t seed,
-                              const std::filesystem::path& dir,
-                              const CutFleetOptions& options = {});
+                              const std::filesystem::path& dir, const CutFleetOptions& options = {},
+                              const std::vector<std::filesystem::path>& protected_inputs = {});
 
 }  // namespace fleetmerge

@@ -99,25 +99,32 @@ TEST(SimulateCli, AFixedBaseCaseIsEvaluatedAgainstTheBase) {
 }
 
 // A building map kept in the case folder, whose image has the name of a file the case writes
-// (the base's, or a robot's): simulate refuses before writing anything, and the image is intact.
-TEST(SimulateCli, NeverOverwritesTheBuildingsImage) {
+// (the base's, or a robot's): `simulate` and `bench cut-fleet` refuse before writing anything,
+// and the image is intact.
+TEST(SimulateCli, CaseCommandsNeverOverwriteTheBuildingsImage) {
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   const fs::path intel = *testing::SharedMapsDir() / "intel_lab.pgm";
-  for (const std::string image : {"base.pgm", "robot1.pgm"}) {
-    const fs::path dir = testing::MakeTempDir("simulate_cli_image");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"base.pgm", "simulate {dir} --building {yaml} --fixed-base --robots 2 --path-length 10"},
+      {"robot1.pgm", "simulate {dir} --building {yaml} --robots 2 --path-length 10"},
+      {"robot2.pgm", "bench cut-fleet {yaml} {dir} --robots 2 --seed 1"}};
+  for (const auto& [image, command] : cases) {
+    const fs::path dir = testing::MakeTempDir("case_commands_image");
     fs::copy_file(intel, dir / image);
     testing::WriteFile(dir / "site.yaml", "image: " + image +
                                               "\nresolution: 0.05\norigin: [0.0, 0.0, 0.0]\n"
                                               "negate: 0\noccupied_thresh: 0.65\n"
                                               "free_thresh: 0.196\n");
-    const auto run =
-        Fleetmerge("simulate " + ShellQuote(dir) + " --building " + ShellQuote(dir / "site.yaml") +
-                   " --fixed-base --robots 2 --path-length 10");
-    EXPECT_NE(run.exit_code, 0) << image;
+    std::string args = command;
+    args.replace(args.find("{dir}"), 5, ShellQuote(dir));
+    args.replace(args.find("{yaml}"), 6, ShellQuote(dir / "site.yaml"));
+    const auto run = Fleetmerge(args);
+    EXPECT_NE(run.exit_code, 0) << command;
     EXPECT_NE(run.err.find("refusing to overwrite input file"), std::string::npos) << run.both();
     EXPECT_NE(run.err.find(image), std::string::npos) << run.both();
-    EXPECT_FALSE(fs::exists(dir / "job.yaml")) << image;
-    EXPECT_TRUE(testing::ReadFile(dir / image) == testing::ReadFile(intel)) << image;
+    EXPECT_FALSE(fs::exists(dir / "job.yaml")) << command;
+    EXPECT_FALSE(fs::exists(dir / "truth.yaml")) << command;
+    EXPECT_TRUE(testing::ReadFile(dir / image) == testing::ReadFile(intel)) << command;
   }
 }
 
