@@ -180,7 +180,12 @@ int RunAllCommands(int argc, char** argv) {
   }
   return RunReportingErrors([&] {
     if (demo_app->parsed()) return RunDemoCommand(demo, std::cout, std::cerr);
-    if (merge_app->parsed()) return RunMergeCommand(merge, std::cout, std::cerr);
+    if (merge_app->parsed()) {
+      for (const CLI::Option* option : merge_app->get_options()) {
+        if (option->count() > 0) merge.given.push_back(option->get_name());
+      }
+      return RunMergeCommand(merge, std::cout, std::cerr);
+    }
     if (pair_app->parsed()) {
       ShareTheHeapBetweenThreads();
       return RunPairCommand(pair, std::cout);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -12,6 +13,7 @@
 #include <ostream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "core/error.hpp"
 #include "core/parallel.hpp"
@@ -225,6 +227,68 @@ MapPoseOption ParseMapPoseOption(const std::string& flag, const std::string& val
   return option;
 }
 
+// merge's options that job files' keys also set (configs/README.md), and how each is copied from
+// the command line's options into a job's.
+struct JobKeyOption {
+  const char* name;
+  void (*copy)(const FleetOptions& given, FleetOptions& job);
+};
+// In this order: a sampling option keeps the job's seed, which --seed (after it) then sets.
+const JobKeyOption kJobKeyOptions[] = {
+    {"--threads", [](const FleetOptions& g, FleetOptions& j) { j.threads = g.threads; }},
+    {"--omega-threshold",
+     [](const FleetOptions& g, FleetOptions& j) { j.omega_threshold = g.omega_threshold; }},
+    {"--octree-band-min",
+     [](const FleetOptions& g, FleetOptions& j) { j.octree.band_min_m = g.octree.band_min_m; }},
+    {"--octree-band-max",
+     [](const FleetOptions& g, FleetOptions& j) { j.octree.band_max_m = g.octree.band_max_m; }},
+    {"--max-map-cells",
+     [](const FleetOptions& g, FleetOptions& j) { j.max_map_cells = g.max_map_cells; }},
+    {"--n-theta",
+     [](const FleetOptions& g, FleetOptions& j) {
+       j.pair.hypotheses.hough.n_theta = g.pair.hypotheses.hough.n_theta;
+     }},
+    {"--rho-step",
+     [](const FleetOptions& g, FleetOptions& j) {
+       j.pair.hypotheses.hough.rho_step_cells = g.pair.hypotheses.hough.rho_step_cells;
+     }},
+    {"--hough-sampling",
+     [](const FleetOptions& g, FleetOptions& j) {
+       SamplingOptions& sampling = j.pair.hypotheses.hough_sampling;
+       const std::uint32_t seed = sampling.seed;
+       sampling = g.pair.hypotheses.hough_sampling;
+       sampling.seed = seed;
+     }},
+    {"--spectra-sampling",
+     [](const FleetOptions& g, FleetOptions& j) {
+       SamplingOptions& sampling = j.pair.hypotheses.spectra_sampling;
+       const std::uint32_t seed = sampling.seed;
+       sampling = g.pair.hypotheses.spectra_sampling;
+       sampling.seed = seed;
+     }},
+    {"--seed",
+     [](const FleetOptions& g, FleetOptions& j) {
+       j.pair.hypotheses.hough_sampling.seed = g.pair.hypotheses.hough_sampling.seed;
+       j.pair.hypotheses.spectra_sampling.seed = g.pair.hypotheses.spectra_sampling.seed;
+     }},
+    {"--translation",
+     [](const FleetOptions& g, FleetOptions& j) {
+       j.pair.hypotheses.translation.method = g.pair.hypotheses.translation.method;
+     }},
+    {"--no-refine", [](const FleetOptions& g, FleetOptions& j) { j.pair.refine = g.pair.refine; }},
+};
+
+// merge's options for --out's map list only, and the job file's key that does their work.
+const std::pair<const char*, const char*> kMapListOptions[] = {
+    {"--reference", "its 'reference' key"},
+    {"--topic", "each map entry's 'topic' key"},
+    {"--tf-parent", "its 'tf_parent' key"},
+    {"--tf-child", "its 'tf_child' key"}};
+
+bool Given(const MergeCommand& command, const std::string& name) {
+  return std::find(command.given.begin(), command.given.end(), name) != command.given.end();
+}
+
 Error RepeatedMap(const std::string& flag, const std::string& value, const std::string& name) {
   return Error(flag + " '" + value + "': map '" + name +
                "' is already given by --fixed or --initial-pose (a fixed map's pose is exact; it "
@@ -275,6 +339,20 @@ Job JobFromMapList(const MergeCommand& command) {
   return job;
 }
 
+void ApplyGivenOptions(const MergeCommand& command, const std::string& job_name,
+                       FleetOptions& job) {
+  for (const JobKeyOption& option : kJobKeyOptions) {
+    if (Given(command, option.name)) option.copy(command.options, job);
+  }
+  if ((Given(command, "--octree-band-min") || Given(command, "--octree-band-max")) &&
+      !(job.octree.band_min_m < job.octree.band_max_m)) {
+    throw Error("--octree-band-min/--octree-band-max: job '" + job_name +
+                "' gets the height band [" + std::to_string(job.octree.band_min_m) + ", " +
+                std::to_string(job.octree.band_max_m) +
+                "] m, which is empty; give both bounds, the lower below the upper");
+  }
+}
+
 int RunJobs(const std::vector<Job>& jobs, bool quiet, std::ostream& out, std::ostream& err,
             bool force, double lock_wait_s) {
   int failed = 0;
@@ -304,10 +382,18 @@ int RunMergeCommand(const MergeCommand& command, std::ostream& out, std::ostream
                   " names a map of --out's map list; a job file gives its maps' 'fixed', 'pose' "
                   "and 'initial_pose' keys itself (configs/README.md)");
     }
+    for (const auto& [name, key] : kMapListOptions) {
+      if (Given(command, name)) {
+        throw Error(std::string(name) + " is for --out's map list; a job file sets it with " + key +
+                    " (configs/README.md)");
+      }
+    }
     // Every job file is validated before any job runs.
     for (const auto& file : command.inputs) {
       for (Job& job : LoadJobFile(file)) jobs.push_back(std::move(job));
     }
+    // The command line's options that job files' keys also set are every job's.
+    for (Job& job : jobs) ApplyGivenOptions(command, job.name, job.options);
   }
   for (Job& job : jobs) {  // the command line's cache is every job's
     if (command.cache_dir) job.options.cache_dir = *command.cache_dir;

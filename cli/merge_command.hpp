@@ -34,7 +34,19 @@ struct MergeCommand {
   // Set for every job (job files' `cache` / `cache_max_mb` otherwise).
   std::optional<std::filesystem::path> cache_dir;
   std::optional<std::int64_t> cache_max_mb;
+  // The options given on the command line, by long name ("--threads"). With job files, those
+  // that a job file's keys also set (ApplyGivenOptions) apply to every job, over its keys, and
+  // those of --out's map list (--reference, --topic, --tf-parent, --tf-child) are refused.
+  std::vector<std::string> given;
 };
+
+// Copies into `job` (a job file's options) the options of `command` that its command line gave
+// and that job files' keys also set: --threads, --omega-threshold, --octree-band-min/max,
+// --max-map-cells and the method options (--n-theta, --rho-step, --hough-sampling,
+// --spectra-sampling, --seed, --translation, --no-refine). A sampling option keeps the job's
+// seed unless --seed is given too. Throws fleetmerge::Error when the height band they leave is
+// empty, naming the options and the job.
+void ApplyGivenOptions(const MergeCommand& command, const std::string& job_name, FleetOptions& job);
 
 // The job described by `--out DIR a.yaml b.yaml ...`, with its --fixed and --initial-pose maps.
 // Throws fleetmerge::Error naming the option and its value for a name that is no map's, a

@@ -504,6 +504,85 @@ void ExpectSecondJobComplete(const fs::path& dir, const testing::CommandResult& 
   EXPECT_TRUE(fs::is_regular_file(out / "merged_0.yaml"));
 }
 
+// The options a job ran with, as its report.html lists those that differ from the defaults:
+// {"threads": {"default": 0, "value": 1}, ...}.
+json OptionsChanged(const fs::path& report_html) {
+  const std::string page = ReadFile(report_html);
+  const std::string key = "\"options_changed\":";
+  const std::size_t start = page.find(key);
+  if (start == std::string::npos) {
+    ADD_FAILURE() << "no options_changed in " << report_html;
+    return json::object();
+  }
+  std::size_t end = start + key.size();
+  int depth = 0;  // the object's braces (its keys and values hold none)
+  do {
+    depth += page[end] == '{' ? 1 : page[end] == '}' ? -1 : 0;
+    ++end;
+  } while (depth > 0 && end < page.size());
+  return json::parse(page.substr(start + key.size(), end - start - key.size()));
+}
+
+// Options on the command line that job files' keys also set apply to every job of the files,
+// over their keys: `merge --omega-threshold 1.0 jobs.yaml` accepts no pair in either job. A
+// sampling option keeps a job's own seed.
+TEST_F(MergeCliTest, CommandLineOptionsApplyToEveryJobOfAJobFile) {
+  const fs::path dir = testing::MakeTempDir("merge_job_options");
+  WriteFile(dir / "jobs.yaml", WithMaps(R"(jobs:
+  - {name: first, maps: [$A, $B], output: first_out}
+  - {name: second, maps: [$A, $B], output: second_out, threads: 2, seed: 7, omega_threshold: 0.5,
+     hough: {n_theta: 120}}
+)"));
+  const auto run =
+      Fleetmerge("merge --quiet --threads 1 --omega-threshold 1.0 --n-theta 90 " +
+                 std::string("--hough-sampling every:2 ") + ShellQuote(dir / "jobs.yaml"));
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  for (const char* job : {"first", "second"}) {
+    const fs::path out = dir / (std::string(job) + "_out");
+    const json report = ReadJson(out / "report.json");
+    EXPECT_EQ(MapNamed(report, "robot_b")["placed_by"], "unmerged") << job;
+    EXPECT_EQ(report["components"].size(), 2u) << job;
+    const json changed = OptionsChanged(out / "report.html");
+    EXPECT_EQ(changed["threads"]["value"], 1) << job << ": " << changed;
+    EXPECT_EQ(changed["omega_threshold"]["value"], 1.0) << job << ": " << changed;
+    EXPECT_EQ(changed["hough.n_theta"]["value"], 90) << job << ": " << changed;
+    EXPECT_EQ(changed["hough.sampling.step"]["value"], 2) << job << ": " << changed;
+  }
+  EXPECT_EQ(OptionsChanged(dir / "second_out" / "report.html")["seed"]["value"], 7);
+  EXPECT_FALSE(OptionsChanged(dir / "first_out" / "report.html").contains("seed"));
+
+  // Without the options, the same jobs merge both maps.
+  ASSERT_EQ(Fleetmerge("merge --quiet " + ShellQuote(dir / "jobs.yaml")).exit_code, 0);
+  EXPECT_EQ(ReadJson(dir / "first_out" / "report.json")["components"].size(), 1u);
+}
+
+// The options of --out's map list (each has a job file key) and a height band that the command
+// line's bound leaves empty are refused with a job file, before anything is written.
+TEST_F(MergeCliTest, MapListOptionsAndAnEmptyBandWithAJobFileAreRefused) {
+  const fs::path dir = testing::MakeTempDir("merge_job_map_list_options");
+  WriteFile(dir / "jobs.yaml", WithMaps("jobs:\n  - {name: site, maps: [$A, $B], output: out}\n"));
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--reference robot_b",
+       "--reference is for --out's map list; a job file sets it with "
+       "its 'reference' key"},
+      {"--topic /map",
+       "--topic is for --out's map list; a job file sets it with each map "
+       "entry's 'topic' key"},
+      {"--tf-parent world",
+       "--tf-parent is for --out's map list; a job file sets it with its "
+       "'tf_parent' key"},
+      {"--tf-child robot/{name}", "--tf-child is for --out's map list"},
+      {"--octree-band-min 2.5",
+       "--octree-band-min/--octree-band-max: job 'site' gets the "
+       "height band [2.500000, 1.800000] m, which is empty"}};
+  for (const auto& [option, message] : cases) {
+    const auto run = Fleetmerge("merge --quiet " + option + " " + ShellQuote(dir / "jobs.yaml"));
+    EXPECT_EQ(run.exit_code, 1) << option << ": " << run.both();
+    EXPECT_NE(run.err.find(message), std::string::npos) << option << ": " << run.err;
+    EXPECT_FALSE(fs::exists(dir / "out")) << option;
+  }
+}
+
 TEST_F(MergeCliTest, JobWhoseOutputCannotBeCreatedFailsAlone) {
   // `output` under a regular file passes validation (the folder does not exist yet) and fails
   // when the job writes.
