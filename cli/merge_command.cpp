@@ -227,6 +227,13 @@ MapPoseOption ParseMapPoseOption(const std::string& flag, const std::string& val
   return option;
 }
 
+// A sampling option given on the command line: the job's seed stays unless --seed is given.
+void CopyKeepingSeed(const SamplingOptions& given, SamplingOptions& job) {
+  const std::uint32_t seed = job.seed;
+  job = given;
+  job.seed = seed;
+}
+
 // merge's options that job files' keys also set (configs/README.md), and how each is copied from
 // the command line's options into a job's.
 struct JobKeyOption {
@@ -254,17 +261,11 @@ const JobKeyOption kJobKeyOptions[] = {
      }},
     {"--hough-sampling",
      [](const FleetOptions& g, FleetOptions& j) {
-       SamplingOptions& sampling = j.pair.hypotheses.hough_sampling;
-       const std::uint32_t seed = sampling.seed;
-       sampling = g.pair.hypotheses.hough_sampling;
-       sampling.seed = seed;
+       CopyKeepingSeed(g.pair.hypotheses.hough_sampling, j.pair.hypotheses.hough_sampling);
      }},
     {"--spectra-sampling",
      [](const FleetOptions& g, FleetOptions& j) {
-       SamplingOptions& sampling = j.pair.hypotheses.spectra_sampling;
-       const std::uint32_t seed = sampling.seed;
-       sampling = g.pair.hypotheses.spectra_sampling;
-       sampling.seed = seed;
+       CopyKeepingSeed(g.pair.hypotheses.spectra_sampling, j.pair.hypotheses.spectra_sampling);
      }},
     {"--seed",
      [](const FleetOptions& g, FleetOptions& j) {
