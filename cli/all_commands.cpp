@@ -30,6 +30,9 @@ int RunAllCommands(int argc, char** argv) {
   PairCommand pair;
   CLI::App* pair_app = AddPairCommand(app, pair);
 
+  // With job files, an option that a job key also sets applies to every job and one of --out's
+  // map list is refused: each new option belongs in one of cli/merge_command.cpp's lists
+  // (kJobKeyOptions, kMapListOptions), or it is dropped without a word.
   MergeCommand merge;
   CLI::App* merge_app =
       app.add_subcommand("merge", "Merge the maps of a fleet: job files, or maps with --out DIR");
