@@ -1,6 +1,7 @@
 // `fleetmerge simulate` through the executable: the case it writes merges with `fleetmerge
-// merge` (all robots of the building in one component, the foreign one alone), and bad options
-// or an unreadable building map fail with a message.
+// merge` (all robots of the building in one component, the foreign one alone), a case with a
+// fixed base is evaluated against it, neither `simulate` nor `bench cut-fleet` writes over the
+// building map, and bad options or an unreadable building map fail with a message.
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
