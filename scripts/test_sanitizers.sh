@@ -53,6 +53,17 @@ same_paths_on_more_data+='|^report_browser_test$'
 # (PairCacheTest.ABoundBelowTheJobsPairsKeepsThemAll runs it on 3). About 60 s of CPU under ASan.
 same_paths_on_more_data+='|^CliTest\.UsageErrorsExitTwo|^MergeCliOctrees\.QuietMergeOfOctrees'
 same_paths_on_more_data+='|^MergeCacheCliTest\.ABoundBelowTheJobsPairsKeepsThemAndWarns'
+# The local refinement at three tolerances on 5 robots in MIT CSAIL (every pair's refinement
+# runs here at the default one), one pair's hypotheses on several threads (`pair` runs a pair on
+# all cores in cli_test here; FleetMerge.ResultDoesNotDependOnThreadCount is left out likewise),
+# and three command-line checks whose code runs in the unit tests here: the fixed-base case
+# (simulation_test, simulation_file_test, fixed_base_test), the building map's protected files
+# (atomic_file_test, map_io_test) and the map-list options refused with job files (an error
+# before any work). About 42 s of CPU under ASan; CI's last run took 1458 s of its 25 minutes.
+same_paths_on_more_data+='|^LocalAlignment\.TighterToleranceEndsNearerTheMinimum'
+same_paths_on_more_data+='|^PreparedMapTest\.OnePairOnSeveralThreadsGivesTheOneThreadHypotheses'
+same_paths_on_more_data+='|^SimulateCli\.(AFixedBaseCaseIsEvaluated|CaseCommandsNeverOverwrite)'
+same_paths_on_more_data+='|^MergeCliTest\.MapListOptionsAndAnEmptyBand'
 # The executable's own shared libraries (cli/CMakeLists.txt): a unity build's executable links
 # whole batches of files, and so what any file of a batch calls (Ceres, LAPACK, OctoMap); stage 1
 # checks the file-by-file build that users get.
