@@ -45,12 +45,7 @@ void PrintCase(const SimulatedCase& simulated, const WrittenCase& written, doubl
         << " m, yaw " << t.T_building_map.yaw_rad() * 180.0 / M_PI << " deg\n";
   }
   out << "true overlaps (building cells seen by both, share of the smaller map):\n";
-  std::vector<TruthOverlap> overlaps = simulated.truth.overlaps;
-  if (simulated.base) {
-    overlaps.insert(overlaps.begin(), simulated.base->overlaps.begin(),
-                    simulated.base->overlaps.end());
-  }
-  for (const TruthOverlap& o : overlaps) {
+  for (const TruthOverlap& o : WrittenTruth(simulated).overlaps) {
     out << "  " << o.a << " - " << o.b << ": " << o.cells << " cells, " << std::setprecision(2)
         << o.share << std::setprecision(3) << "\n";
   }

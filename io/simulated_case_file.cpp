@@ -30,6 +30,16 @@ std::string JobYaml(const SimulatedCase& simulated) {
 
 }  // namespace
 
+GroundTruth WrittenTruth(const SimulatedCase& simulated) {
+  GroundTruth truth = simulated.truth;
+  if (simulated.base) {
+    truth.maps.insert(truth.maps.begin(), simulated.base->truth);
+    truth.overlaps.insert(truth.overlaps.begin(), simulated.base->overlaps.begin(),
+                          simulated.base->overlaps.end());
+  }
+  return truth;
+}
+
 WrittenCase WriteSimulatedCase(const SimulatedCase& simulated, const std::filesystem::path& dir,
                                const std::vector<std::filesystem::path>& protected_inputs) {
   if (simulated.maps.size() != simulated.names.size() ||
@@ -59,15 +69,8 @@ WrittenCase WriteSimulatedCase(const SimulatedCase& simulated, const std::filesy
   for (std::size_t k = 0; k < simulated.maps.size(); ++k) {
     SaveMap(simulated.maps[k], written.map_yamls[k], protected_inputs);
   }
-  GroundTruth truth = simulated.truth;
-  if (simulated.base) {
-    // First, so that eval scores each robot (the pair's second map) by its own cells.
-    SaveMap(simulated.base->map, written.base_yaml, protected_inputs);
-    truth.maps.insert(truth.maps.begin(), simulated.base->truth);
-    truth.overlaps.insert(truth.overlaps.begin(), simulated.base->overlaps.begin(),
-                          simulated.base->overlaps.end());
-  }
-  SaveTruth(truth, written.truth_yaml);
+  if (simulated.base) SaveMap(simulated.base->map, written.base_yaml, protected_inputs);
+  SaveTruth(WrittenTruth(simulated), written.truth_yaml);
   WriteFileAtomically(written.job_yaml, JobYaml(simulated), protected_inputs);
   return written;
 }

@@ -18,6 +18,10 @@ struct WrittenCase {
   std::filesystem::path job_yaml;
 };
 
+// The case's truth as truth.yaml holds it: with a fixed base, the base first among the maps and
+// its overlaps first (so that eval scores each robot, the pair's second map, by its own cells).
+GroundTruth WrittenTruth(const SimulatedCase& simulated);
+
 // Creates `dir` if needed and writes every file atomically: the maps first, then truth.yaml,
 // then job.yaml, so a job.yaml present means the case is complete. Refuses (fleetmerge::Error)
 // to overwrite any of `protected_inputs` (the building maps) before writing anything.
