@@ -11,9 +11,12 @@
 # poses, pairs and hypotheses exactly, and prints the three runs' stage times (report.json's
 # timing_ms). Last, the warm run split into its pair stage and the rest, and its CPU time per
 # core: the least wall time it could take with every core busy.
+# NEW picks which robot is the new one (1..N, default N): the job lists the others in their
+# order, then robot NEW, and its first N - 1 maps are the cached run's. A new robot's pairs cost
+# what its map's size makes them cost, so the share depends on which robot comes last.
 # Needs a build (scripts/build.sh, or BUILD_DIR) and ../shared/data/maps.
-# Usage: scripts/cache_rerun_benchmark.sh [OUT_DIR] [REPETITIONS] [ROBOTS]
-#   (default out/cache_rerun, 3, 33; 100 robots take about 90 s per repetition)
+# Usage: scripts/cache_rerun_benchmark.sh [OUT_DIR] [REPETITIONS] [ROBOTS] [NEW]
+#   (default out/cache_rerun, 3, 33, ROBOTS; 100 robots take about 90 s per repetition)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 fleetmerge=${BUILD_DIR:-build}/cli/fleetmerge
@@ -21,8 +24,13 @@ maps=../shared/data/maps
 out=${1:-out/cache_rerun}
 repetitions=${2:-3}
 robots=${3:-33}
+new=${4:-$robots}
 if ! [[ "$robots" =~ ^[0-9]+$ ]] || [ "$robots" -lt 3 ]; then
   echo "cache_rerun_benchmark: ROBOTS must be a whole number >= 3, got '$robots'" >&2
+  exit 1
+fi
+if ! [[ "$new" =~ ^[0-9]+$ ]] || [ "$new" -lt 1 ] || [ "$new" -gt "$robots" ]; then
+  echo "cache_rerun_benchmark: NEW must be a whole number in [1, $robots], got '$new'" >&2
   exit 1
 fi
 if [ ! -d "$maps" ]; then
@@ -33,16 +41,26 @@ rm -rf "$out"
 mkdir -p "$out"
 "$fleetmerge" simulate "$out/case" --building "$maps/aces3_austin.yaml" --robots "$robots" --seed 7 \
   >/dev/null
-/usr/bin/python3 - "$fleetmerge" "$out" "$repetitions" "$robots" <<'PY'
+/usr/bin/python3 - "$fleetmerge" "$out" "$repetitions" "$robots" "$new" <<'PY'
 import json, os, resource, shutil, statistics, subprocess, sys, time
 import yaml
 
 fleetmerge, out, repetitions, robots = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
+new = int(sys.argv[5])  # 1-based
 case = os.path.join(out, "case")
 job = yaml.safe_load(open(os.path.join(case, "job.yaml")))
 maps = [m if isinstance(m, str) else m["path"] for m in job["maps"]]
 maps = [os.path.join(os.path.abspath(case), m) for m in maps]
 assert len(maps) == robots, len(maps)
+maps = maps[:new - 1] + maps[new:] + [maps[new - 1]]  # robot NEW last: the one the cache lacks
+
+def cells(map_yaml):  # width x height of a map's PGM image
+    image = yaml.safe_load(open(map_yaml))["image"]
+    with open(os.path.join(os.path.dirname(map_yaml), image), "rb") as f:
+        fields = f.read(64).split()  # P5 width height maxval: simulate writes no comments
+    return f"{int(fields[1])} x {int(fields[2])} cells"
+
+new_map = f"robot {new} ({cells(maps[-1])})"
 
 def write_job(name, count):
     path = os.path.join(out, name + ".yaml")
@@ -111,7 +129,7 @@ for rep in range(repetitions):
 cold_s, warm_s = statistics.median(cold), statistics.median(warm)
 again_s = statistics.median(again)
 print(f"median of {repetitions}: cold {robots} robots {cold_s:.2f} s, "
-      f"warm with robot {robots} new {warm_s:.2f} s, ratio {100 * warm_s / cold_s:.1f} %; "
+      f"warm with {new_map} new {warm_s:.2f} s, ratio {100 * warm_s / cold_s:.1f} %; "
       f"again with no map new {again_s:.2f} s, ratio {100 * again_s / cold_s:.1f} %")
 # The warm run split in two: its pair stage (the new pairs, and the kept preparations of the maps
 # they share with the new one read back), which grows as N with the fleet where the cold run's
