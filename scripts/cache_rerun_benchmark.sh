@@ -13,7 +13,7 @@
 # core: the least wall time it could take with every core busy.
 # NEW picks which robot is the new one (1..N, default N): the job lists the others in their
 # order, then robot NEW, and its first N - 1 maps are the cached run's. A new robot's pairs cost
-# what its map's size makes them cost, so the share depends on which robot comes last.
+# what its map's size makes them cost (docs/speed.md, "Re-runs", has each robot as the new one).
 # Needs a build (scripts/build.sh, or BUILD_DIR) and ../shared/data/maps.
 # Usage: scripts/cache_rerun_benchmark.sh [OUT_DIR] [REPETITIONS] [ROBOTS] [NEW]
 #   (default out/cache_rerun, 3, 33, ROBOTS; 100 robots take about 90 s per repetition)
