@@ -13,7 +13,8 @@ namespace {
 
 void PrintTable(const EvalCommand& command, const Evaluation& e, std::ostream& out) {
   out << "report " << command.report_json.string() << " against " << command.truth_yaml.string()
-      << " (pairs overlapping >= " << command.options.min_overlap_cells << " cells)\n";
+      << " (scored: pairs linked by overlaps of >= " << command.options.min_overlap_cells
+      << " cells, directly or through other maps)\n";
   out << std::left << std::setw(28) << "pair" << std::setw(14) << "building" << std::right
       << std::setw(9) << "overlap" << std::setw(8) << "merged" << std::setw(11) << "yaw[deg]"
       << std::setw(10) << "trans[m]" << std::setw(11) << "displ[c]" << std::setw(8) << "coarse"
@@ -23,7 +24,7 @@ void PrintTable(const EvalCommand& command, const Evaluation& e, std::ostream& o
     out << std::left << std::setw(28) << (p.a + " - " + p.b) << std::setw(14) << p.building
         << std::right << std::setw(9) << p.overlap_cells;
     if (!p.scored) {
-      out << "  (below the minimum overlap: not scored)\n";
+      out << "  (not linked by overlaps: not scored)\n";
       continue;
     }
     out << std::setw(8) << (p.merged ? "yes" : "NO");
