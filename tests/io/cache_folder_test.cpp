@@ -19,6 +19,7 @@
 #include "tests/support/error_of.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/shared_data.hpp"
+#include "tests/support/unprivileged.hpp"
 
 namespace fleetmerge {
 namespace {
@@ -307,16 +308,18 @@ TEST_F(CacheFolderTest, AFolderHoldingAnInputIsRefused) {
       << error;
 }
 
+// As root (CI's fresh machines) the folder is `nobody`'s and the cache is opened as `nobody`:
+// root writes any folder.
 TEST_F(CacheFolderTest, AnUnwritableFolderIsAnErrorNamingIt) {
+  const auto user = ft::UserWithoutPrivileges();
+  if (!user) GTEST_SKIP() << "running as root on a system without the user nobody";
   fs::create_directories(dir_);
+  ft::GiveTo(dir_, *user);
   fs::permissions(dir_, fs::perms::owner_read | fs::perms::owner_exec);
-  if (::access(dir_.c_str(), W_OK) == 0) {
-    fs::permissions(dir_, fs::perms::owner_all);
-    GTEST_SKIP() << "running with privileges that write any folder (root)";
-  }
-  const std::string error = ErrorOf([&] { CacheFolder cache(dir_, "v", Options()); });
+  const auto error = ft::ErrorAs(*user, dir_, [&] { CacheFolder cache(dir_, "v", Options()); });
   fs::permissions(dir_, fs::perms::owner_all);
-  EXPECT_TRUE(Contains(error, "cache folder " + dir_.string() + " is not writable")) << error;
+  if (!error) GTEST_SKIP() << "user " << user->uid << " cannot reach " << dir_;
+  EXPECT_TRUE(Contains(*error, "cache folder " + dir_.string() + " is not writable")) << *error;
 }
 
 // `--cache real` and `--cache link` (link -> real) are one cache: the second waits for the first.
@@ -342,13 +345,20 @@ TEST_F(CacheFolderTest, TheLockLivesInsideTheFolder) {
 
 TEST_F(CacheFolderTest, AFolderWhoseParentIsReadOnlyIsUsable) {
   { CacheFolder cache(dir_, "v", Options()); }
-  fs::permissions(dir_.parent_path(), fs::perms::owner_read | fs::perms::owner_exec);
-  const bool privileged = ::access(dir_.parent_path().c_str(), W_OK) == 0;
-  std::string error;
-  if (!privileged) error = ErrorOf([&] { CacheFolder cache(dir_, "v", Options()); });
+  const auto user = ft::UserWithoutPrivileges();
+  if (!user) GTEST_SKIP() << "running as root on a system without the user nobody";
+  ft::GiveTo(dir_, *user);  // the cache is the user's, its parent is not theirs to write
+  const fs::perms read_only = fs::perms::owner_read | fs::perms::owner_exec |
+                              fs::perms::group_read | fs::perms::group_exec |
+                              fs::perms::others_read | fs::perms::others_exec;
+  fs::permissions(dir_.parent_path(), read_only);
+  const auto error = ft::ErrorAs(*user, dir_, [&] {
+    CacheFolder cache(dir_, "v", Options());
+    cache.Write(Key("a"), "an entry");
+  });
   fs::permissions(dir_.parent_path(), fs::perms::owner_all);
-  if (privileged) GTEST_SKIP() << "running with privileges that write any folder (root)";
-  EXPECT_EQ(error, "");
+  if (!error) GTEST_SKIP() << "user " << user->uid << " cannot reach " << dir_;
+  EXPECT_EQ(*error, "");
 }
 
 TEST_F(CacheFolderTest, ASecondJobWaitsForTheLockOrFailsNamingTheHolder) {
