@@ -100,8 +100,9 @@ def merge(maps, out=None, fixed=None, initial_poses=None, **options):
     metres, radians)} give fixed maps and known start poses by map name, as `merge --fixed` and
     `--initial-pose` do; a Map carries its own (fixed, pose, initial_pose, initial_pose_sigma).
     Options are keywords: threads, omega_threshold, min_overlap_cells, min_wall_agreement,
-    min_bridge_wall_agreement, hypotheses, resolution, fusion, reference, refine, translation, max_map_cells, octree_band_min/max,
-    cache_dir (keep pairs' hypotheses there and reuse them: `merge --cache`), cache_max_mb."""
+    min_bridge_wall_agreement, hypotheses, resolution, fusion, reference, refine, translation,
+    max_map_cells, octree_band_min/max, cache_dir (keep pairs' hypotheses there and reuse them:
+    `merge --cache`), cache_max_mb."""
     maps = list(maps)
     o = _options(options)
     for key, given in (("fixed", fixed), ("initial_poses", initial_poses)):
