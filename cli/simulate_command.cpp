@@ -42,7 +42,13 @@ void PrintCase(const SimulatedCase& simulated, const WrittenCase& written, doubl
     out << "  " << written.map_yamls[k].string() << ": building " << t.building << ", "
         << map.width() << " x " << map.height() << " cells of " << t.resolution_m
         << " m, pose in building x " << t.T_building_map.x_m() << " m, y " << t.T_building_map.y_m()
-        << " m, yaw " << t.T_building_map.yaw_rad() * 180.0 / M_PI << " deg\n";
+        << " m, yaw " << t.T_building_map.yaw_rad() * 180.0 / M_PI << " deg";
+    if (HasPrior(simulated.priors, static_cast<int>(k))) {
+      const Pose2& T = simulated.priors[k]->T_site_map;
+      out << "; initial_pose x " << T.x_m() << " m, y " << T.y_m() << " m, yaw "
+          << T.yaw_rad() * 180.0 / M_PI << " deg";
+    }
+    out << "\n";
   }
   out << "true overlaps (building cells seen by both, share of the smaller map):\n";
   for (const TruthOverlap& o : WrittenTruth(simulated).overlaps) {
@@ -97,6 +103,27 @@ CLI::App* AddSimulateCommand(CLI::App& app, SimulateCommand& c) {
   sim->add_flag("--fixed-base", o.fixed_base,
                 "the building's own map joins the case as a fixed base map (base.yaml, first in "
                 "job.yaml and truth.yaml), as in a site job");
+  sim->add_option_function<std::vector<double>>(
+         "--priors",
+         [&o](const std::vector<double>& v) {
+           if (v.size() != 2 && v.size() != 4) {
+             throw CLI::ValidationError("--priors",
+                                        "expected ERROR_M,ERROR_DEG or "
+                                        "ERROR_M,ERROR_DEG,SIGMA_M,SIGMA_DEG");
+           }
+           o.priors = SimulationOptions::Priors{};
+           o.priors->error_m = v[0];
+           o.priors->error_deg = v[1];
+           if (v.size() == 4) {
+             o.priors->sigma_m = v[2];
+             o.priors->sigma_deg = v[3];
+           }
+         },
+         "each robot gets a known start pose (job.yaml's initial_pose) this far off its true "
+         "pose: ERROR_M in a random direction and ERROR_DEG; sigmas SIGMA_M, SIGMA_DEG "
+         "(default 0.5 m, 10 deg)")
+      ->delimiter(',')
+      ->expected(2, 4);
   sim->add_flag("--little-overlap", o.little_overlap,
                 "robots start far apart and each explores only its own part of the building");
   auto* foreign = sim->add_option("--foreign", c.foreign_yaml,

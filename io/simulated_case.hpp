@@ -9,6 +9,7 @@
 #include "core/occupancy_grid.hpp"
 #include "core/pose2.hpp"
 #include "io/truth_file.hpp"
+#include "job/pose_prior.hpp"
 
 namespace fleetmerge {
 
@@ -32,6 +33,9 @@ struct SimulatedCase {
   // and pictures; paths[i] belongs to maps[i].
   std::vector<std::vector<Pose2>> paths;
   std::optional<SimulatedBase> base;
+  // Known start poses (SimulationOptions::priors), in the building's frame: priors[i] belongs to
+  // maps[i]; empty without priors.
+  PosePriors priors;
 };
 
 }  // namespace fleetmerge

@@ -11,6 +11,7 @@ namespace {
 
 std::string JobYaml(const SimulatedCase& simulated) {
   YAML::Emitter out;
+  out.SetDoublePrecision(17);  // the priors as computed, to the last bit
   out << YAML::Comment(
       "fleetmerge simulate: merge the simulated robot maps (truth.yaml has the answer)");
   out << YAML::BeginMap;
@@ -21,7 +22,20 @@ std::string JobYaml(const SimulatedCase& simulated) {
         << simulated.base->truth.file.string() << YAML::Key << "fixed" << YAML::Value << true
         << YAML::EndMap;
   }
-  for (const auto& name : simulated.names) out << name + ".yaml";
+  for (std::size_t k = 0; k < simulated.names.size(); ++k) {
+    const std::string file = simulated.names[k] + ".yaml";
+    if (!HasPrior(simulated.priors, static_cast<int>(k))) {
+      out << file;
+      continue;
+    }
+    const PosePrior& prior = *simulated.priors[k];
+    const Pose2& T = prior.T_site_map;
+    out << YAML::Flow << YAML::BeginMap << YAML::Key << "path" << YAML::Value << file << YAML::Key
+        << "initial_pose" << YAML::Value << YAML::Flow << YAML::BeginSeq << T.x_m() << T.y_m()
+        << T.yaw_rad() << YAML::EndSeq << YAML::Key << "initial_pose_sigma" << YAML::Value
+        << YAML::Flow << YAML::BeginSeq << prior.translation_sigma_m << prior.yaw_sigma_rad
+        << YAML::EndSeq << YAML::EndMap;
+  }
   out << YAML::EndSeq;
   out << YAML::Key << "output" << YAML::Value << "merged";
   out << YAML::EndMap;

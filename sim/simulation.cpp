@@ -110,6 +110,17 @@ void ValidateSimulationOptions(const SimulationOptions& o) {
   Require(o.occupied_ratio > 0.0 && o.occupied_ratio <= 1.0, "occupied_ratio", "a number in (0, 1]",
           o.occupied_ratio);
   Require(o.threads >= 0, "threads (--threads)", "an integer >= 0", o.threads);
+  if (o.priors) {
+    Require(Finite(o.priors->error_m) && o.priors->error_m >= 0.0, "priors.error_m (--priors)",
+            "a finite number >= 0", o.priors->error_m);
+    Require(Finite(o.priors->error_deg) && std::abs(o.priors->error_deg) <= 180.0,
+            "priors.error_deg (--priors)", "a number in [-180, 180]", o.priors->error_deg);
+    Require(Finite(o.priors->sigma_m) && o.priors->sigma_m > 0.0, "priors.sigma_m (--priors)",
+            "a finite number > 0", o.priors->sigma_m);
+    Require(
+        Finite(o.priors->sigma_deg) && o.priors->sigma_deg > 0.0 && o.priors->sigma_deg <= 180.0,
+        "priors.sigma_deg (--priors)", "a number in (0, 180]", o.priors->sigma_deg);
+  }
   Require(!o.resolutions_m.empty(), "resolutions_m (--resolutions)", "at least one value", 0.0);
   for (const double r : o.resolutions_m) {
     Require(Finite(r) && r >= 0.005 && r <= 1.0, "resolutions_m (--resolutions)",
@@ -193,6 +204,26 @@ SimulatedCase SimulateFleet(const SimulationBuilding& building, const Simulation
                                smaller > 0 ? double(cells) / double(smaller) : 0.0});
     }
     result.base = std::move(base);
+  }
+  if (options.priors) {
+    // A generator of its own: the robots, their maps and frames are the case without priors.
+    PortableRng rng(options.seed ^ 0x9e3779b9u);
+    const SimulationOptions::Priors& p = *options.priors;
+    result.priors.resize(plans.size());
+    for (std::size_t k = 0; k < plans.size(); ++k) {
+      const double direction_rad = rng.Uniform(-M_PI, M_PI);
+      const double yaw_sign = rng.Uniform(0.0, 1.0) < 0.5 ? -1.0 : 1.0;
+      if (plans[k].building != &building) continue;
+      const Pose2& T = plans[k].T_building_map;
+      PosePrior prior;
+      prior.T_site_map =
+          Pose2(T.translation_m() +
+                    p.error_m * Eigen::Vector2d(std::cos(direction_rad), std::sin(direction_rad)),
+                T.yaw_rad() + yaw_sign * p.error_deg * M_PI / 180.0);
+      prior.translation_sigma_m = p.sigma_m;
+      prior.yaw_sigma_rad = p.sigma_deg * M_PI / 180.0;
+      result.priors[k] = prior;
+    }
   }
   return result;
 }

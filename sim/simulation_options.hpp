@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace fleetmerge {
@@ -47,6 +48,18 @@ struct SimulationOptions {
   // The building's own map joins the case as a fixed base map (io/simulated_case.hpp), as in a
   // site job; a synthetic office's as it was generated.
   bool fixed_base = false;
+  // Each robot of the building gets a known start pose (job.yaml's `initial_pose`, in the
+  // building's frame) off its true frame pose by exactly these errors, as an operator's dock
+  // poses are: the translation in a random direction, the yaw with a random sign (both from
+  // `seed`), with these sigmas (`initial_pose_sigma`). nullopt: no priors. The foreign robot gets
+  // none (its building is not the site).
+  struct Priors {
+    double error_m = 0.3;
+    double error_deg = 5.0;
+    double sigma_m = 0.5;
+    double sigma_deg = 10.0;
+  };
+  std::optional<Priors> priors;
   int threads = 0;  // robots simulated in parallel (0: all cores); the result does not depend on it
 };
 

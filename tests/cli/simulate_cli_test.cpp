@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -95,6 +96,43 @@ TEST(SimulateCli, AFixedBaseCaseIsEvaluatedAgainstTheBase) {
     EXPECT_TRUE(p.at("coarse").get<bool>()) << p;
   }
   EXPECT_EQ(base_pairs, 3);
+  EXPECT_EQ(result.at("summary").at("coarse_pairs"), result.at("summary").at("scored_pairs"));
+  EXPECT_EQ(result.at("summary").at("false_merges"), 0);
+}
+
+// `simulate --priors`, merged and evaluated: the known start poses put the merged frame on the
+// building's, and every pair is within the coarse tolerance. Each robot's reported pose is its
+// true pose moved by one rigid error common to all, the priors' consensus: its yaw within their
+// 5 deg, its shift at a frame origin within their 0.3 m plus that yaw over the frames' spread
+// (up to 20 m per axis), so under 2 m. Without priors the first robot would sit at the identity.
+TEST(SimulateCli, PriorsPutTheMergedFrameOnTheBuildings) {
+  const fs::path dir = testing::MakeTempDir("simulate_cli_priors");
+  const auto run =
+      Fleetmerge("simulate " + ShellQuote(dir) + " --robots 3 --seed 2 --priors 0.3,5");
+  ASSERT_EQ(run.exit_code, 0) << run.both();
+  EXPECT_NE(run.out.find("; initial_pose x "), std::string::npos) << run.out;
+  const auto merge = Fleetmerge("merge --quiet " + ShellQuote(dir / "job.yaml"));
+  ASSERT_EQ(merge.exit_code, 0) << merge.both();
+  std::ifstream in(dir / "merged" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(in);
+  const YAML::Node truth = YAML::LoadFile((dir / "truth.yaml").string());
+  ASSERT_EQ(report.at("maps").size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const nlohmann::json& map = report.at("maps").at(k);
+    const YAML::Node pose = truth["maps"][k]["pose"];
+    ASSERT_EQ(map.at("name"), truth["maps"][k]["name"].as<std::string>());
+    const double dx = map.at("pose").at("x").get<double>() - pose["x"].as<double>();
+    const double dy = map.at("pose").at("y").get<double>() - pose["y"].as<double>();
+    const double dyaw = std::remainder(
+        map.at("pose").at("yaw").get<double>() - pose["yaw"].as<double>(), 2.0 * M_PI);
+    EXPECT_LT(std::hypot(dx, dy), 2.0) << map;
+    EXPECT_LT(std::abs(dyaw), 5.5 * M_PI / 180.0) << map;
+  }
+  const auto eval = Fleetmerge("eval --json " + ShellQuote(dir / "merged" / "report.json") + " " +
+                               ShellQuote(dir / "truth.yaml"));
+  ASSERT_EQ(eval.exit_code, 0) << eval.both();
+  const nlohmann::json result = nlohmann::json::parse(eval.out);
+  EXPECT_GT(result.at("summary").at("scored_pairs").get<int>(), 0);
   EXPECT_EQ(result.at("summary").at("coarse_pairs"), result.at("summary").at("scored_pairs"));
   EXPECT_EQ(result.at("summary").at("false_merges"), 0);
 }

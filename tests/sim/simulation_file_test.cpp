@@ -136,5 +136,32 @@ TEST(WriteSimulatedCase, NeverOverwritesAnInput) {
   EXPECT_FALSE(fs::exists(dir / "job.yaml"));
 }
 
+// The priors reach job.yaml as each robot's initial_pose and initial_pose_sigma, to the last bit;
+// the foreign robot's entry has none.
+TEST(WriteSimulatedCase, PriorsAreTheRobotsInitialPosesInTheJob) {
+  SimulationOptions o;
+  o.robots = 3;
+  o.path_length_m = 20.0;
+  o.fixed_base = true;
+  o.priors = SimulationOptions::Priors{0.3, 5.0, 0.5, 10.0};
+  const SimulatedCase c = SimulateFleet(OfficeBuilding(5), o, OfficeBuilding(6, "foreign"));
+  const fs::path dir = testing::MakeTempDir("simulated_case_priors") / "case";
+  const WrittenCase written = WriteSimulatedCase(c, dir);
+  const std::vector<Job> jobs = LoadJobFile(written.job_yaml);
+  ASSERT_EQ(jobs.size(), 1u);
+  ASSERT_EQ(jobs[0].maps.size(), 5u);
+  EXPECT_FALSE(jobs[0].maps[0].prior.has_value()) << "the base is fixed, not a prior";
+  for (std::size_t k = 0; k < 3; ++k) {
+    const JobMap& map = jobs[0].maps[k + 1];
+    ASSERT_TRUE(map.prior.has_value()) << map.name;
+    EXPECT_EQ(map.prior->T_site_map.x_m(), c.priors[k]->T_site_map.x_m());
+    EXPECT_EQ(map.prior->T_site_map.y_m(), c.priors[k]->T_site_map.y_m());
+    EXPECT_EQ(map.prior->T_site_map.yaw_rad(), c.priors[k]->T_site_map.yaw_rad());
+    EXPECT_EQ(map.prior->translation_sigma_m, 0.5);
+    EXPECT_EQ(map.prior->yaw_sigma_rad, c.priors[k]->yaw_sigma_rad);
+  }
+  EXPECT_FALSE(jobs[0].maps[4].prior.has_value()) << jobs[0].maps[4].name;
+}
+
 }  // namespace
 }  // namespace fleetmerge

@@ -285,6 +285,52 @@ TEST(SimulateFleet, AFixedBaseOverlapsEachRobotAsABruteForceRecount) {
   }
 }
 
+// Each robot of the building gets a prior exactly `error_m` and `error_deg` off its true frame
+// pose, the directions differ between robots, the foreign robot gets none, and the case is
+// otherwise the case without priors.
+TEST(SimulateFleet, PriorsAreTheTruePosesOffByTheGivenErrors) {
+  EXPECT_TRUE(NoiseFreeCase().priors.empty()) << "no priors unless asked";
+  SimulationOptions o = NoiseFree();
+  o.robots = 3;
+  o.path_length_m = 25.0;
+  o.priors = SimulationOptions::Priors{0.3, 5.0, 0.7, 12.0};
+  const SimulationBuilding foreign = OfficeBuilding(11, "foreign");
+  const SimulatedCase c = SimulateFleet(Office(), o, foreign);
+  ASSERT_EQ(c.priors.size(), 4u);
+  EXPECT_FALSE(c.priors[3].has_value()) << "the foreign robot's building is not the site";
+  std::vector<double> directions_rad;
+  for (int k = 0; k < 3; ++k) {
+    ASSERT_TRUE(c.priors[k].has_value()) << k;
+    const PosePrior& prior = *c.priors[k];
+    const Pose2& truth = c.truth.maps[k].T_building_map;
+    const Eigen::Vector2d off_m = prior.T_site_map.translation_m() - truth.translation_m();
+    EXPECT_NEAR(off_m.norm(), 0.3, 1e-9) << k;
+    EXPECT_NEAR(std::abs(WrapAngle(prior.T_site_map.yaw_rad() - truth.yaw_rad())),
+                5.0 * M_PI / 180.0, 1e-9)
+        << k;
+    EXPECT_EQ(prior.translation_sigma_m, 0.7);
+    EXPECT_NEAR(prior.yaw_sigma_rad, 12.0 * M_PI / 180.0, 1e-12);
+    directions_rad.push_back(std::atan2(off_m.y(), off_m.x()));
+  }
+  EXPECT_NE(directions_rad[0], directions_rad[1]);
+  EXPECT_NE(directions_rad[1], directions_rad[2]);
+  const SimulatedCase without = SimulateFleet(
+      Office(),
+      [&] {
+        SimulationOptions plain = o;
+        plain.priors.reset();
+        return plain;
+      }(),
+      foreign);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(cv::countNonZero(without.maps[k].cells() != c.maps[k].cells()), 0) << k;
+    EXPECT_EQ(without.truth.maps[k].T_building_map.translation_m(),
+              c.truth.maps[k].T_building_map.translation_m());
+  }
+  o.priors->sigma_m = 0.0;
+  EXPECT_THROW(SimulateFleet(Office(), o), Error);
+}
+
 bool SameCells(const OccupancyGrid& a, const OccupancyGrid& b) {
   return a.cells().size() == b.cells().size() && cv::countNonZero(a.cells() != b.cells()) == 0;
 }
