@@ -114,8 +114,9 @@ std::vector<std::optional<Pose2>> Solve(int map_count, const std::vector<PairOut
   anchors[site] = Pose2();
   constant[site] = true;
   // The spanning tree sees the prior edges at omega 0, below any pair's: it places a map by its
-  // pairs where it has any, by its prior only where it has none. In the solve a prior weighs by
-  // its own sigmas (omega 1).
+  // pairs where it has any, by its prior only where it has none. In the solve a prior is whitened
+  // by its own sigmas (omega 1; the robust loss trims it at loss_scale of them) and its cost
+  // scaled by kPriorCostScale.
   auto tree_edges = edges;
   for (int m = 0; m < map_count; ++m) {
     if (IsFixed(known.fixed, m)) {
@@ -124,6 +125,7 @@ std::vector<std::optional<Pose2>> Solve(int map_count, const std::vector<PairOut
     } else if (HasPrior(known.priors, m)) {
       const PosePrior& p = *known.priors[m];
       edges.push_back({site, m, p.T_site_map, 1.0, p.translation_sigma_m, p.yaw_sigma_rad});
+      edges.back().cost_scale = kPriorCostScale;
       tree_edges.push_back(edges.back());
       tree_edges.back().omega = 0.0;
     }

@@ -43,6 +43,17 @@ inline bool IsFixed(const FixedPoses& fixed, int m) { return !fixed.empty() && f
 // point of b's map frame, for the pair and the index of the hypothesis. Empty: b's frame origin.
 using EdgeAnchor = std::function<Eigen::Vector2d(const PairOutcome& pair, int hypothesis)>;
 
+// A prior's cost against a pair's in the pose graph, after the robust loss. A pair's edge is
+// whitened by PoseGraphOptions' 0.10 m and 0.5 deg, about 20 times the error the pairs show (a
+// median displacement of about 0.1 cells, 5 mm at 5 cm: docs/accuracy.md), and a prior by its
+// own sigmas, which are what an operator knows. At full weight a prior 0.3 m off (sigma 0.5 m)
+// moved the robots that pairs place by 0.08-0.17 cells and 0.1 deg (the median displacement of
+// 28 simulated fleets' pairs rose from 0.10 to 0.18 cells); scaled by 1 / 20^2 it keeps the
+// pairs' weight against it as measured, and moves them by under 0.001 cells (priors_test). It
+// changes nothing where priors alone place a map or a group, nor the component's placement in the
+// site frame (the priors' weighted mean either way), nor where the loss trims a far prior.
+constexpr double kPriorCostScale = 1.0 / 400.0;
+
 // Marks pairs accepted (in `pairs`, with edge_hypothesis and notes) and returns the poses.
 // `reference` is the job's reference map; other components use their first map.
 // Fixed maps (`fixed`, `reference` then the first of them) are one component whatever the edges:
@@ -52,15 +63,15 @@ using EdgeAnchor = std::function<Eigen::Vector2d(const PairOutcome& pair, int hy
 //
 // Known start poses (`priors`, job/pose_prior.hpp) are all given in one site frame: the graph
 // gets a node S for that frame and one edge S -> m per map with a prior, measured as the prior
-// with the prior's own sigmas. With fixed maps S is their frame, held at the identity; without,
-// S is held at the identity all the same, so the component that holds the priors has the site
-// frame (a map's pose there is comparable with its prior). S links every map with a prior, so
-// those maps form one component (with the fixed maps) even where no pair links them: a map that
-// overlaps no other is placed at its prior (PlacedBy::kPrior), and so is a group of maps that
-// accepted pairs link to each other but not to the fixed maps (without fixed maps: a group other
-// than the largest, the reference's on a tie), by its members' priors. Prior edges are never taken
-// out by the cycle checks: the pairs that contradict the priors were dropped before
-// (pipeline/pose_priors.hpp). Without priors and fixed maps nothing of this applies.
+// with the prior's own sigmas, its cost scaled by kPriorCostScale. With fixed maps S is their
+// frame, held at the identity; without, S is held at the identity all the same, so the component
+// that holds the priors has the site frame (a map's pose there is comparable with its prior). S
+// links every map with a prior, so those maps form one component (with the fixed maps) even where
+// no pair links them: a map that overlaps no other is placed at its prior (PlacedBy::kPrior), and
+// so is a group of maps that accepted pairs link to each other but not to the fixed maps (without
+// fixed maps: a group other than the largest, the reference's on a tie), by its members' priors.
+// Prior edges are never taken out by the cycle checks: the pairs that contradict the priors were
+// dropped before (pipeline/pose_priors.hpp). Without priors and fixed maps nothing of this applies.
 //
 // `weak_wall_agreement` (FleetOptions::min_bridge_wall_agreement in a merge; 0: never) splits
 // edges into weak and strong by the wall agreement of their hypothesis: when the cycle checks

@@ -129,7 +129,11 @@ std::vector<std::optional<Pose2>> OptimizePoseGraph(
     if (!initial[edge.a] || !initial[edge.b]) continue;
     auto* cost = new ceres::AutoDiffCostFunction<RelativePoseResidual, 3, 3, 3>(
         new RelativePoseResidual(edge, options));
-    problem.AddResidualBlock(cost, MakeLoss(options), x[edge.a].data(), x[edge.b].data());
+    ceres::LossFunction* loss = MakeLoss(options);
+    if (edge.cost_scale != 1.0) {
+      loss = new ceres::ScaledLoss(loss, edge.cost_scale, ceres::TAKE_OWNERSHIP);
+    }
+    problem.AddResidualBlock(cost, loss, x[edge.a].data(), x[edge.b].data());
   }
   bool gauge = false;
   for (std::size_t n = 0; n < initial.size(); ++n) {

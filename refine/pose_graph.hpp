@@ -51,6 +51,9 @@ struct PoseGraphEdge {
   // its maps' cells are; a map's frame origin can lie tens of metres from them, and there a yaw
   // error of 0.1 deg already moves it by a cell or more.
   Eigen::Vector2d anchor_b_m = Eigen::Vector2d::Zero();
+  // Multiplies the edge's cost after the robust loss: its weight against the other edges, while
+  // the loss still trims it where its residual is loss_scale of its own sigmas.
+  double cost_scale = 1.0;
 };
 
 // Whether kAutomatic solves a graph of `free_nodes` nodes that are not held constant and `edges`

@@ -158,6 +158,29 @@ TEST(Priors, SlightlyOffPriorsKeepEveryRightPairAndPlaceEveryRobot) {
   }
 }
 
+// Where pairs place a robot, priors a few decimetres off must not move it: they are metres-level
+// knowledge and the pairs are good to a tenth of a cell, so the pose graph weighs a prior at
+// kPriorCostScale against the pairs (pipeline/fleet_graph.hpp). With the base fixed in both runs
+// the frame is the same, so each robot's pose with priors is compared with its pose without.
+TEST(Priors, SlightlyOffPriorsDoNotMoveWhatThePairsPlace) {
+  FLEETMERGE_REQUIRE_SHARED_MAPS();
+  const SiteCase c = SimulateSite(4, 1, false);
+  SiteMerge s = WithBase(c);
+  const FleetResult without = MergeFleet(s.maps, 0, s.fixed, FleetOptions{});
+  WithSlightlyOffPriors(c, s);
+  const FleetResult with = MergeFleet(s.maps, 0, s.fixed, s.priors, FleetOptions{});
+  for (int r = 0; r < static_cast<int>(c.sim.maps.size()); ++r) {
+    ASSERT_EQ(without.placed_by[r + 1], PlacedBy::kPairs) << "robot" << r + 1;
+    ASSERT_EQ(with.placed_by[r + 1], PlacedBy::kPairs) << "robot" << r + 1;
+    const auto [yaw_deg, cells] =
+        PoseError(c, r, with.T_component_map[r + 1], without.T_component_map[r + 1]);
+    std::printf("robot%d with priors against without: %.4f deg, %.3f cells\n", r + 1, yaw_deg,
+                cells);
+    EXPECT_LT(yaw_deg, 0.01) << "robot" << r + 1;
+    EXPECT_LT(cells, 0.05) << "robot" << r + 1;
+  }
+}
+
 TEST(Priors, WithoutAFixedMapTheMergedFrameIsTheSiteFrame) {
   FLEETMERGE_REQUIRE_SHARED_MAPS();
   const SiteCase c = SimulateSite(4, 1, false);

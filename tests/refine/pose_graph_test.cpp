@@ -98,6 +98,32 @@ TEST(PoseGraph, AnEdgesOwnSigmasWeighIt) {
   EXPECT_NEAR(poses[1]->yaw_rad(), 0.01 / 101.0, 1e-8);
 }
 
+// cost_scale multiplies an edge's cost after the loss. Without a loss the weights are then
+// 100 : 0.25, so the prior's measurement pulls by 0.25/100.25 of its 1 m. With the Cauchy loss the
+// prior 10 of its own sigmas off is trimmed as before, whatever its scale: its pull, scaled or
+// not, is far below the unscaled least-squares share.
+TEST(PoseGraph, ACostScaleWeighsAnEdgeAfterTheLoss) {
+  PoseGraphOptions options;
+  options.loss = RobustLoss::kNone;
+  std::vector<PoseGraphEdge> edges = {{0, 1, Pose2(5.0, 0.0, 0.0), 1.0, 0.0, 0.0},
+                                      {0, 1, Pose2(6.0, 0.0, 0.0), 1.0, 1.0, 0.1}};
+  edges[1].cost_scale = 0.25;
+  const std::vector<std::optional<Pose2>> initial = {Pose2(), Pose2(5.0, 0.0, 0.0)};
+  auto poses = OptimizePoseGraph(initial, edges, 0, options);
+  ASSERT_TRUE(poses[1].has_value());
+  EXPECT_NEAR(poses[1]->x_m(), 5.0 + 0.25 / 100.25, 1e-6);
+
+  options.loss = RobustLoss::kCauchy;      // loss_scale 3 sigmas
+  edges[1].T_a_b = Pose2(15.0, 0.0, 0.0);  // 10 m: 10 of the prior's sigmas
+  edges[1].cost_scale = 1.0;
+  const double unscaled = OptimizePoseGraph(initial, edges, 0, options)[1]->x_m() - 5.0;
+  edges[1].cost_scale = 0.25;
+  const double scaled = OptimizePoseGraph(initial, edges, 0, options)[1]->x_m() - 5.0;
+  EXPECT_GT(unscaled, 0.0);
+  EXPECT_LT(unscaled, 0.1 * 10.0 / 101.0);  // trimmed: least squares would pull 10/101 m
+  EXPECT_NEAR(scaled, 0.25 * unscaled, 0.05 * unscaled);  // the trimmed pull, scaled
+}
+
 // The two linear solvers are exact: on a noisy graph with a wrong edge (the robust loss at work),
 // two fixed maps and a prior's own sigmas, they reach the same poses, far from the start.
 // kAutomatic takes the dense Schur solver on a dense graph and the sparse Cholesky one on a
