@@ -44,14 +44,12 @@ inline bool IsFixed(const FixedPoses& fixed, int m) { return !fixed.empty() && f
 using EdgeAnchor = std::function<Eigen::Vector2d(const PairOutcome& pair, int hypothesis)>;
 
 // A prior's cost against a pair's in the pose graph, after the robust loss. A pair's edge is
-// whitened by PoseGraphOptions' 0.10 m and 0.5 deg, about 20 times the error the pairs show (a
-// median displacement of about 0.1 cells, 5 mm at 5 cm: docs/accuracy.md), and a prior by its
-// own sigmas, which are what an operator knows. At full weight a prior 0.3 m off (sigma 0.5 m)
-// moved the robots that pairs place by 0.08-0.17 cells and 0.1 deg (the median displacement of
-// 28 simulated fleets' pairs rose from 0.10 to 0.18 cells); scaled by 1 / 20^2 it keeps the
-// pairs' weight against it as measured, and moves them by under 0.001 cells (priors_test). It
-// changes nothing where priors alone place a map or a group, nor the component's placement in the
-// site frame (the priors' weighted mean either way), nor where the loss trims a far prior.
+// whitened by PoseGraphOptions' 0.10 m and 0.5 deg, about 20 times the error pairs show (a tenth
+// of a cell), and a prior by its own sigmas, which are what an operator knows: at full cost a
+// prior a few decimetres off bent what the pairs placed. Scaled by 1 / 20^2 the pairs keep their
+// measured weight against it. It still places what no pair places, it still sets the component's
+// placement in the site frame (the priors' weighted mean either way), and the loss still trims a
+// far prior at its own sigmas. Both weights measured: docs/accuracy.md, "Known start poses".
 constexpr double kPriorCostScale = 1.0 / 400.0;
 
 // Marks pairs accepted (in `pairs`, with edge_hypothesis and notes) and returns the poses.
