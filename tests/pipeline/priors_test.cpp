@@ -126,13 +126,33 @@ void WithSlightlyOffPriors(const SiteCase& c, SiteMerge& s) {
   }
 }
 
+// 4 robots (seed 1) merged with the base, without priors and with SlightlyOffPrior's; made once,
+// in place (s points into c).
+struct BaseMerges {
+  SiteCase c;
+  SiteMerge s;  // with the priors
+  FleetResult without, with;
+};
+const BaseMerges& SlightlyOffPriorsOnTheBase() {
+  static const BaseMerges* const merges = [] {
+    auto* m = new BaseMerges;
+    m->c = SimulateSite(4, 1, false);
+    m->s = WithBase(m->c);
+    m->without = MergeFleet(m->s.maps, 0, m->s.fixed, FleetOptions{});
+    WithSlightlyOffPriors(m->c, m->s);
+    m->with = MergeFleet(m->s.maps, 0, m->s.fixed, m->s.priors, FleetOptions{});
+    return m;
+  }();
+  return *merges;
+}
+
 TEST(Priors, SlightlyOffPriorsKeepEveryRightPairAndPlaceEveryRobot) {
   FLEETMERGE_REQUIRE_SHARED_MAPS();
-  const SiteCase c = SimulateSite(4, 1, false);
-  SiteMerge s = WithBase(c);
-  const FleetResult without = MergeFleet(s.maps, 0, s.fixed, FleetOptions{});
-  WithSlightlyOffPriors(c, s);
-  const FleetResult with = MergeFleet(s.maps, 0, s.fixed, s.priors, FleetOptions{});
+  const BaseMerges& m = SlightlyOffPriorsOnTheBase();
+  const SiteCase& c = m.c;
+  const SiteMerge& s = m.s;
+  const FleetResult& without = m.without;
+  const FleetResult& with = m.with;
   int right = 0;
   for (std::size_t k = 0; k < without.pairs.size(); ++k) {
     const PairOutcome& p = with.pairs[k];
@@ -164,16 +184,12 @@ TEST(Priors, SlightlyOffPriorsKeepEveryRightPairAndPlaceEveryRobot) {
 // the frame is the same, so each robot's pose with priors is compared with its pose without.
 TEST(Priors, SlightlyOffPriorsDoNotMoveWhatThePairsPlace) {
   FLEETMERGE_REQUIRE_SHARED_MAPS();
-  const SiteCase c = SimulateSite(4, 1, false);
-  SiteMerge s = WithBase(c);
-  const FleetResult without = MergeFleet(s.maps, 0, s.fixed, FleetOptions{});
-  WithSlightlyOffPriors(c, s);
-  const FleetResult with = MergeFleet(s.maps, 0, s.fixed, s.priors, FleetOptions{});
-  for (int r = 0; r < static_cast<int>(c.sim.maps.size()); ++r) {
-    ASSERT_EQ(without.placed_by[r + 1], PlacedBy::kPairs) << "robot" << r + 1;
-    ASSERT_EQ(with.placed_by[r + 1], PlacedBy::kPairs) << "robot" << r + 1;
+  const BaseMerges& m = SlightlyOffPriorsOnTheBase();
+  for (int r = 0; r < static_cast<int>(m.c.sim.maps.size()); ++r) {
+    ASSERT_EQ(m.without.placed_by[r + 1], PlacedBy::kPairs) << "robot" << r + 1;
+    ASSERT_EQ(m.with.placed_by[r + 1], PlacedBy::kPairs) << "robot" << r + 1;
     const auto [yaw_deg, cells] =
-        PoseError(c, r, with.T_component_map[r + 1], without.T_component_map[r + 1]);
+        PoseError(m.c, r, m.with.T_component_map[r + 1], m.without.T_component_map[r + 1]);
     std::printf("robot%d with priors against without: %.4f deg, %.3f cells\n", r + 1, yaw_deg,
                 cells);
     EXPECT_LT(yaw_deg, 0.01) << "robot" << r + 1;
