@@ -6,6 +6,8 @@
 #include <optional>
 #include <vector>
 
+#include "job/pose_prior.hpp"
+
 namespace fleetmerge {
 
 struct LidarOptions {
@@ -56,8 +58,8 @@ struct SimulationOptions {
   struct Priors {
     double error_m = 0.3;
     double error_deg = 5.0;
-    double sigma_m = 0.5;
-    double sigma_deg = 10.0;
+    double sigma_m = kDefaultPriorTranslationSigmaM;
+    double sigma_deg = kDefaultPriorYawSigmaRad * 180.0 / M_PI;
   };
   std::optional<Priors> priors;
   int threads = 0;  // robots simulated in parallel (0: all cores); the result does not depend on it
